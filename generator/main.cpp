@@ -1,0 +1,138 @@
+// dyngen ROBOT -o DIR: reads a robot, traces the runtime's algorithms for it and writes the
+// specialised code, the model tables, the bit-for-bit check and a CMakeLists.txt.
+#include <cstdio>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "generate.hpp"
+
+using namespace dyngen;
+using namespace dyngen::gen;
+
+namespace {
+
+Vec3<double> parse_gravity(const std::string& text) {
+  std::vector<double> g;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    std::size_t used = 0;
+    double x = 0;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(x))
+      throw InputError(fmt::format("--gravity {}: '{}' is not a finite number", text, item));
+    g.push_back(x);
+  }
+  if (g.size() != 3) throw InputError(fmt::format("--gravity {}: expected three numbers x,y,z", text));
+  return {g[0], g[1], g[2]};
+}
+
+std::vector<Algorithm> parse_algorithms(const std::string& text) {
+  std::vector<Algorithm> out;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    Algorithm a;
+    if (item == "rnea") a = Algorithm::Rnea;
+    else if (item == "crba") a = Algorithm::Crba;
+    else if (item == "aba") a = Algorithm::Aba;
+    else
+      throw InputError(fmt::format("--algorithms {}: unknown algorithm '{}' (rnea, crba, aba)",
+                                   text, item));
+    if (std::find(out.begin(), out.end(), a) == out.end()) out.push_back(a);
+  }
+  if (out.empty()) throw InputError("--algorithms: name at least one of rnea, crba, aba");
+  // always in the same order, so the output does not depend on how the list was written
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"dyngen: generates unrolled, allocation-free C++ for the inverse dynamics (RNEA), "
+               "mass matrix (CRBA) and forward dynamics (ABA) of one robot"};
+  std::string input, output, algorithms = "rnea,crba,aba", gravity, scalar = "double", name;
+  std::vector<std::string> locks;
+  bool no_gravity = false, lock_massless = false, quiet = false;
+  app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
+  app.add_option("-o,--output", output, "output directory (created if missing)")->required();
+  app.add_option("--algorithms", algorithms, "comma-separated subset of rnea,crba,aba")
+      ->capture_default_str();
+  auto* gravity_opt = app.add_option("--gravity", gravity,
+                                     "gravity x,y,z in m/s^2, base coordinates (default: the "
+                                     "chain spec's, else 0,0,-9.81)");
+  app.add_flag("--no-gravity", no_gravity, "gravity 0,0,0")->excludes(gravity_opt);
+  app.add_option("--scalar", scalar, "scalar type of the generated code")
+      ->check(CLI::IsMember({"double", "float"}))
+      ->capture_default_str();
+  app.add_option("--name", name, "C++ namespace and file prefix (default: the robot's name)");
+  app.add_option("--lock", locks, "turn joint JOINT into a fixed joint at q = 0 (repeatable)")
+      ->type_name("JOINT");
+  app.add_flag("--lock-massless", lock_massless, "lock every joint whose subtree has no mass");
+  app.add_flag("-q,--quiet", quiet, "print errors and warnings only");
+  app.set_version_flag("--version", std::string("dyngen ") + version);
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    LoadOptions load;
+    load.lock = locks;
+    load.lock_massless = lock_massless;
+    if (no_gravity) load.gravity = Vec3<double>{0, 0, 0};
+    if (!gravity.empty()) load.gravity = parse_gravity(gravity);
+    GenerateOptions options;
+    options.algorithms = parse_algorithms(algorithms);
+    options.single_precision = scalar == "float";
+
+    if (!quiet) fmt::print("dyngen {}: reading {}\n", version, input);
+    const Robot robot = load_robot(input, load);
+    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
+    options.name = identifier(name.empty() ? robot.name : name);
+
+    std::string algorithm_list;
+    for (const Algorithm a : options.algorithms)
+      algorithm_list += (algorithm_list.empty() ? "" : ",") + std::string(algorithm_name(a));
+    const Vec3<double>& g = robot.model.gravity;
+    options.options_text = fmt::format("--algorithms {} --scalar {} --gravity {},{},{} --name {}",
+                                       algorithm_list, scalar, g.x, g.y, g.z, options.name);
+    for (const std::string& j : locks) options.options_text += " --lock " + j;
+    if (lock_massless) options.options_text += " --lock-massless";
+
+    if (!quiet) {
+      fmt::print("robot '{}': {} joints in {} bodies", robot.name, robot.model.nv, robot.model.nbodies);
+      if (!robot.locked.empty()) fmt::print(", {} joints locked", robot.locked.size());
+      fmt::print("\ntracing {} ({}) ...\n", algorithm_list, scalar);
+      std::fflush(stdout);
+    }
+    const Generated generated = generate(robot, options);
+    write_files(output, generated.files);
+
+    if (!quiet) {
+      fmt::print("operations per call, generated vs runtime (add+sub, mul, div, neg, sin, cos):\n");
+      for (const FunctionCounts& c : generated.counts)
+        fmt::print("  {:<4}  {:>7} vs {:>7}  ({:.0f}% removed)   generated: {}\n",
+                   algorithm_name(c.algorithm), c.generated.total(), c.runtime.total(),
+                   100.0 * (1.0 - double(c.generated.total()) / double(c.runtime.total())),
+                   to_string(c.generated));
+      fmt::print("wrote {} files to {}:", generated.files.size(), output);
+      for (const GeneratedFile& f : generated.files) fmt::print(" {}", f.name);
+      fmt::print("\nbuild and check it against the runtime:\n"
+                 "  cmake -S {0} -B {0}/build -Ddyngen_DIR={1} && cmake --build {0}/build && "
+                 "ctest --test-dir {0}/build\n",
+                 output, DYNGEN_PACKAGE_DIR);
+    }
+  } catch (const InputError& e) {
+    fmt::print(stderr, "dyngen: error: {}\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "dyngen: error: {}\n", e.what());
+    return 2;
+  }
+  return 0;
+}

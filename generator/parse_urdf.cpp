@@ -1,0 +1,157 @@
+// URDF through urdfdom. tinyxml2 reads the file first for line-numbered XML errors, the
+// document order of joints and the tags urdfdom ignores.
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <console_bridge/console.h>
+#include <fmt/format.h>
+#include <tinyxml2.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "robot.hpp"
+
+namespace dyngen::gen {
+
+namespace {
+
+/// Collects urdfdom's console_bridge messages instead of printing them.
+class CollectMessages : public console_bridge::OutputHandler {
+ public:
+  CollectMessages() { console_bridge::useOutputHandler(this); }
+  ~CollectMessages() override { console_bridge::restorePreviousOutputHandler(); }
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) errors.push_back(text);
+    else if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) warnings.push_back(text);
+  }
+  std::vector<std::string> errors, warnings;
+};
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read the file", path));
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Vec3<double> vec(const urdf::Vector3& v) { return {v.x, v.y, v.z}; }
+
+Mat3<double> rotation(const urdf::Rotation& r) {
+  return rotation_from_quaternion(r.x, r.y, r.z, r.w);
+}
+
+/// Elements of <robot> and of its links and joints that urdfdom uses; others are ignored
+/// with a warning.
+const std::set<std::string> known_robot_children{"link", "joint", "material"};
+const std::set<std::string> known_link_children{"inertial", "visual", "collision"};
+const std::set<std::string> known_joint_children{"origin", "parent", "child", "axis", "limit",
+                                                 "dynamics", "safety_controller", "calibration",
+                                                 "mimic"};
+
+}  // namespace
+
+RobotDescription parse_urdf(const std::string& path) {
+  const std::string xml = read_file(path);
+  RobotDescription robot;
+
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw InputError(fmt::format("{}:{}: malformed XML: {}", path, doc.ErrorLineNum(),
+                                 doc.ErrorStr()));
+  const tinyxml2::XMLElement* root = doc.FirstChildElement("robot");
+  if (!root) throw InputError(fmt::format("{}: not a URDF: no <robot> element", path));
+  std::vector<std::string> joint_order;
+  std::set<std::string> ignored;
+  for (const auto* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (!known_robot_children.count(tag)) {
+      ignored.insert("<" + tag + ">");
+      continue;
+    }
+    const auto& known = tag == "link" ? known_link_children : known_joint_children;
+    if (tag != "material")
+      for (const auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement())
+        if (!known.count(c->Name())) ignored.insert(fmt::format("<{}> in <{}>", c->Name(), tag));
+    if (tag == "joint" && e->Attribute("name")) joint_order.push_back(e->Attribute("name"));
+  }
+  for (const std::string& tag : ignored)
+    robot.warnings.push_back(fmt::format("{}: {} is not used by dyngen and is ignored", path, tag));
+
+  urdf::ModelInterfaceSharedPtr urdf;
+  {
+    CollectMessages messages;
+    urdf = urdf::parseURDF(xml);
+    for (const std::string& w : messages.warnings)
+      robot.warnings.push_back(fmt::format("{}: {}", path, w));
+    if (!urdf) {
+      std::string why;
+      for (const std::string& e : messages.errors) why += (why.empty() ? "" : "; ") + e;
+      throw InputError(fmt::format("{}: invalid URDF: {}", path, why.empty() ? "urdfdom rejected it" : why));
+    }
+  }
+  robot.name = urdf->getName();
+
+  std::string massless;
+  for (const auto& [name, link] : urdf->links_) {
+    LinkSpec spec;
+    spec.name = name;
+    if (!link->inertial) {
+      massless += (massless.empty() ? "'" : ", '") + name + "'";
+    } else {
+      const urdf::Inertial& in = *link->inertial;
+      spec.mass = in.mass;
+      spec.com = vec(in.origin.position);
+      spec.R = rotation(in.origin.rotation);
+      spec.I_com = {in.ixx, in.iyy, in.izz, in.ixy, in.ixz, in.iyz};
+    }
+    robot.builder.add_link(spec);
+  }
+  if (!massless.empty())
+    robot.warnings.push_back(
+        fmt::format("{}: links without <inertial>, treated as massless frames: {}", path, massless));
+
+  std::map<std::string, int> position;
+  for (std::size_t k = 0; k < joint_order.size(); ++k) position.emplace(joint_order[k], k);
+  std::vector<urdf::JointSharedPtr> joints;
+  for (const auto& [name, joint] : urdf->joints_) joints.push_back(joint);
+  std::stable_sort(joints.begin(), joints.end(), [&](const auto& a, const auto& b) {
+    return position[a->name] < position[b->name];
+  });
+  for (const urdf::JointSharedPtr& joint : joints) {
+    JointSpec spec;
+    spec.name = joint->name;
+    spec.parent = joint->parent_link_name;
+    spec.child = joint->child_link_name;
+    spec.xyz = vec(joint->parent_to_joint_origin_transform.position);
+    spec.R = rotation(joint->parent_to_joint_origin_transform.rotation);
+    spec.axis = vec(joint->axis);
+    switch (joint->type) {
+      case urdf::Joint::REVOLUTE:
+      case urdf::Joint::CONTINUOUS: spec.kind = JointKind::Revolute; break;
+      case urdf::Joint::PRISMATIC: spec.kind = JointKind::Prismatic; break;
+      case urdf::Joint::FIXED: spec.kind = JointKind::Fixed; break;
+      case urdf::Joint::FLOATING:
+      case urdf::Joint::PLANAR:
+      case urdf::Joint::UNKNOWN:
+        throw InputError(fmt::format(
+            "{}: joint '{}': type '{}' is not supported (dyngen supports revolute, continuous, "
+            "prismatic and fixed joints)",
+            path, joint->name,
+            joint->type == urdf::Joint::FLOATING ? "floating"
+            : joint->type == urdf::Joint::PLANAR ? "planar"
+                                                 : "unknown"));
+    }
+    if (joint->mimic)
+      robot.warnings.push_back(fmt::format(
+          "{}: joint '{}' mimics '{}': mimic joints are not supported yet, it is treated as an "
+          "independent joint",
+          path, joint->name, joint->mimic->joint_name));
+    robot.builder.add_joint(spec);
+  }
+  return robot;
+}
+
+}  // namespace dyngen::gen

@@ -1,0 +1,158 @@
+#include "robot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+#include <openssl/evp.h>
+
+#include "dyngen/aba.hpp"
+#include "dyngen/crba.hpp"
+
+namespace dyngen::gen {
+
+namespace {
+
+std::string sha256_of_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  const std::string bytes = s.str();
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int size = 0;
+  EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha256(), nullptr);
+  std::string hex;
+  for (unsigned int k = 0; k < size; ++k) hex += fmt::format("{:02x}", digest[k]);
+  return hex;
+}
+
+/// Mass and inertia must be finite, the mass non-negative and the inertia positive
+/// semidefinite; inertias that break the triangle inequality are only warned about, as
+/// several real robots have them.
+void check_inertia(const std::string& path, const LinkSpec& link,
+                   std::vector<std::string>& warnings) {
+  const std::string where = fmt::format("{}: link '{}' <inertial>", path, link.name);
+  if (!std::isfinite(link.mass)) throw InputError(where + ": mass is not finite");
+  if (link.mass < 0) throw InputError(fmt::format("{}: mass is negative ({})", where, link.mass));
+  const Sym3<double>& I = link.I_com;
+  for (const double x : {I.xx, I.yy, I.zz, I.xy, I.xz, I.yz})
+    if (!std::isfinite(x)) throw InputError(where + ": an inertia entry is not finite");
+  for (const double x : {link.com.x, link.com.y, link.com.z})
+    if (!std::isfinite(x)) throw InputError(where + ": the centre of mass is not finite");
+  Eigen::Matrix3d A;
+  A << I.xx, I.xy, I.xz, I.xy, I.yy, I.yz, I.xz, I.yz, I.zz;
+  const Eigen::Vector3d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(A).eigenvalues();
+  const double scale = std::max(std::abs(lambda[0]), std::abs(lambda[2]));
+  if (lambda[0] < -1e-12 * scale)
+    throw InputError(fmt::format(
+        "{}: the inertia tensor has a negative eigenvalue ({:.6g}; eigenvalues {:.6g}, {:.6g}, "
+        "{:.6g}), so it is not a physical inertia",
+        where, lambda[0], lambda[0], lambda[1], lambda[2]));
+  if (lambda[0] + lambda[1] < lambda[2] * (1 - 1e-6))
+    warnings.push_back(fmt::format(
+        "{}: principal moments {:.6g}, {:.6g}, {:.6g} break the triangle inequality "
+        "(I1 + I2 >= I3); used as given",
+        where, lambda[0], lambda[1], lambda[2]));
+}
+
+bool has_extension(const std::string& path, std::initializer_list<const char*> exts) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return std::any_of(exts.begin(), exts.end(), [&](const char* e) { return ext == e; });
+}
+
+}  // namespace
+
+std::vector<int> joints_with_massless_subtree(const Model<double>& model) {
+  std::vector<bool> has_mass(model.nbodies, false);
+  for (int i = model.nbodies - 1; i >= 0; --i) {
+    const RigidInertia<double>& I = model.I[i];
+    if (I.m != 0 || I.I.xx != 0 || I.I.yy != 0 || I.I.zz != 0 || I.I.xy != 0 || I.I.xz != 0 ||
+        I.I.yz != 0)
+      has_mass[i] = true;
+    if (has_mass[i] && model.parent[i] >= 0) has_mass[model.parent[i]] = true;
+  }
+  std::vector<int> joints;
+  for (int i = 0; i < model.nbodies; ++i)
+    if (!has_mass[i]) joints.push_back(i);
+  return joints;
+}
+
+std::vector<int> joints_moving_no_mass(const Model<double>& model) {
+  const int n = model.nv;
+  Workspace<double> ws(model);
+  std::mt19937_64 rng(20261121);
+  std::uniform_real_distribution<double> angle(-3.14159, 3.14159);
+  std::vector<double> q(n), v(n, 0.0), tau(n, 0.0), qdd(n), M(n * n);
+  std::vector<bool> flagged(n, false);
+  for (int sample = 0; sample < 16; ++sample) {
+    for (double& x : q) x = sample == 0 ? 0.0 : angle(rng);
+    crba<double>(model, ws, q, M);
+    aba<double>(model, ws, q, v, tau, qdd);
+    for (int i = 0; i < model.nbodies; ++i) {
+      const int k = model.q_index[i];
+      const double Mii = M[k * n + k];
+      if (!(Mii > 0) || !(ws.D[i] > 1e-12 * Mii)) flagged[i] = true;
+    }
+  }
+  std::vector<int> joints;
+  for (int i = 0; i < model.nbodies; ++i)
+    if (flagged[i]) joints.push_back(i);
+  return joints;
+}
+
+Robot load_robot(const std::string& path, const LoadOptions& options) {
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(fmt::format("{}: no such file", path));
+  RobotDescription description;
+  if (has_extension(path, {".urdf", ".xml"})) {
+    description = parse_urdf(path);
+  } else if (has_extension(path, {".yaml", ".yml"})) {
+    description = parse_chain(path);
+  } else {
+    throw InputError(fmt::format(
+        "{}: unknown kind of robot file (expected .urdf or .xml for URDF, .yaml or .yml for a "
+        "chain spec)",
+        path));
+  }
+
+  Robot robot;
+  robot.path = path;
+  robot.name = description.name;
+  robot.sha256 = sha256_of_file(path);
+  robot.warnings = description.warnings;
+  for (const LinkSpec& link : description.builder.links())
+    check_inertia(path, link, robot.warnings);
+
+  const Vec3<double> gravity = options.gravity ? *options.gravity
+                               : description.gravity ? *description.gravity
+                                                     : default_gravity;
+  ModelBuilder& builder = description.builder;
+  try {
+    for (const std::string& joint : options.lock) {
+      builder.lock(joint);
+      robot.locked.push_back(joint);
+    }
+    robot.model = builder.build(gravity);
+    if (options.lock_massless) {
+      const std::vector<int> massless = joints_with_massless_subtree(robot.model);
+      for (const int i : massless) {
+        builder.lock(robot.model.joint_name[i]);
+        robot.locked.push_back(robot.model.joint_name[i]);
+      }
+      if (!massless.empty()) robot.model = builder.build(gravity);
+    }
+  } catch (const ModelError& e) {
+    throw InputError(fmt::format("{}: {}", path, e.what()));
+  }
+  if (robot.model.nbodies == 0)
+    throw InputError(fmt::format("{}: the robot has no moving joint", path));
+  return robot;
+}
+
+}  // namespace dyngen::gen

@@ -1,0 +1,58 @@
+// Reading a robot: URDF (through urdfdom) or a chain spec (YAML), checked, with the requested
+// joints locked, built into the runtime's Model by the runtime's own builder.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dyngen/model.hpp"
+#include "dyngen/model_builder.hpp"
+
+namespace dyngen::gen {
+
+/// Bad input: the message names the file, the element and the problem.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A parsed robot before canonicalisation.
+struct RobotDescription {
+  std::string name;
+  ModelBuilder builder;
+  std::optional<Vec3<double>> gravity;  // a chain spec may set it
+  std::vector<std::string> warnings;
+};
+
+RobotDescription parse_urdf(const std::string& path);
+RobotDescription parse_chain(const std::string& path);
+
+struct LoadOptions {
+  std::vector<std::string> lock;        // joints to turn into fixed ones
+  bool lock_massless = false;           // also lock every joint whose subtree has no mass
+  std::optional<Vec3<double>> gravity;  // overrides the file's and the default
+};
+
+struct Robot {
+  std::string path;
+  std::string name;
+  std::string sha256;  // of the input file's bytes
+  Model<double> model;
+  std::vector<std::string> locked;  // joints locked, in the order given
+  std::vector<std::string> warnings;
+};
+
+inline constexpr Vec3<double> default_gravity{0, 0, -9.81};
+
+/// Reads a URDF (.urdf, .xml) or a chain spec (.yaml, .yml) and builds its model.
+Robot load_robot(const std::string& path, const LoadOptions& options = {});
+
+/// Joints whose articulated inertia D vanishes (ABA would divide by zero): D <= 1e-12 of the
+/// joint's own mass-matrix diagonal, or that diagonal 0, at any of a few sampled states.
+std::vector<int> joints_moving_no_mass(const Model<double>& model);
+
+/// Joints whose whole subtree has zero mass and inertia.
+std::vector<int> joints_with_massless_subtree(const Model<double>& model);
+
+}  // namespace dyngen::gen

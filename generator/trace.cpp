@@ -1,0 +1,69 @@
+#include "trace.hpp"
+
+#include <span>
+
+#include "dyngen/aba.hpp"
+#include "dyngen/crba.hpp"
+#include "dyngen/rnea.hpp"
+
+namespace dyngen::gen {
+
+const char* algorithm_name(Algorithm a) {
+  switch (a) {
+    case Algorithm::Rnea: return "rnea";
+    case Algorithm::Crba: return "crba";
+    case Algorithm::Aba: return "aba";
+  }
+  return "?";
+}
+
+template <class T>
+Program<T> trace(Algorithm algorithm, const Model<double>& model, bool simplify) {
+  Program<T> program;
+  program.algorithm = algorithm;
+  program.graph = Graph<T>(simplify);
+  Graph<T>& g = program.graph;
+  const Recording<T> recording(g);
+  // the same conversion the check harness applies: double -> T -> constant nodes
+  const Model<Sym<T>> m = model.cast<T>().template cast<Sym<T>>();
+  Workspace<Sym<T>> ws(m);
+  const int n = model.nv;
+  auto inputs = [&](const char* name) {
+    program.input_arrays.push_back(name);
+    std::vector<Sym<T>> x;
+    for (int i = 0; i < n; ++i) x.push_back(Sym<T>::node(g.input(name, i)));
+    return x;
+  };
+  std::vector<Sym<T>> out;
+  switch (algorithm) {
+    case Algorithm::Rnea: {
+      const auto q = inputs("q"), v = inputs("v"), a = inputs("a");
+      out.resize(n);
+      rnea<Sym<T>>(m, ws, q, v, a, out);
+      program.output_array = "tau";
+      break;
+    }
+    case Algorithm::Crba: {
+      const auto q = inputs("q");
+      out.resize(n * n);
+      crba<Sym<T>>(m, ws, q, out);
+      program.output_array = "M";
+      break;
+    }
+    case Algorithm::Aba: {
+      const auto q = inputs("q"), v = inputs("v"), tau = inputs("tau");
+      out.resize(n);
+      aba<Sym<T>>(m, ws, q, v, tau, out);
+      program.output_array = "qdd";
+      break;
+    }
+  }
+  program.output_size = static_cast<int>(out.size());
+  for (const Sym<T>& s : out) program.outputs.push_back(s.id);
+  return program;
+}
+
+template Program<double> trace<double>(Algorithm, const Model<double>&, bool);
+template Program<float> trace<float>(Algorithm, const Model<double>&, bool);
+
+}  // namespace dyngen::gen

@@ -1,0 +1,81 @@
+// Articulated-body algorithm: forward dynamics qdd = FD(q, qd, tau) (RBDA Table 7.1).
+#pragma once
+
+#include <span>
+
+#include "dyngen/joint.hpp"
+#include "dyngen/trace_hook.hpp"
+#include "dyngen/workspace.hpp"
+
+namespace dyngen {
+
+/// Forward dynamics: qdd = M(q)^-1 (tau - C(q, qd) qd - g(q)). Requires every joint to move
+/// some inertia (D_i > 0); the algorithm has no branch on values and divides by D_i.
+/// No allocation.
+template <class S>
+void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<const S> qd,
+         std::span<const S> tau, std::span<S> qdd) {
+  const Motion<S> a0{{}, {-model.gravity.x, -model.gravity.y, -model.gravity.z}};
+
+  // velocity pass: v_i = Xup v_p + vJ, c_i = v_i x vJ, IA_i = I_i, pA_i = v_i x* I_i v_i
+  for (int i = 0; i < model.nbodies; ++i) {
+    TraceHook<S>::enter(i, Pass::Velocity);
+    const int k = model.q_index[i];
+    const int p = model.parent[i];
+    ws.Xup[i] = joint_transform(model, i, q[k]);
+    const Motion<S> vJ = joint_motion(model, i, qd[k]);
+    if (p < 0) {
+      ws.v[i] = vJ;
+      ws.c[i] = Motion<S>{};  // vJ x vJ = 0
+    } else {
+      ws.v[i] = apply_motion(ws.Xup[i], ws.v[p]) + vJ;
+      ws.c[i] = cross_motion(ws.v[i], vJ);
+    }
+    ws.IA[i] = articulated(model.I[i]);
+    ws.pA[i] = cross_force(ws.v[i], mul(model.I[i], ws.v[i]));
+  }
+
+  // articulated inertia pass: U_i = IA_i S_i, D_i = S_i^T U_i, u_i = tau_i - S_i^T pA_i;
+  // Ia = IA_i - U_i U_i^T / D_i, pa = pA_i + Ia c_i + U_i u_i / D_i,
+  // IA_p += Xup^T Ia Xup, pA_p += Xup^T pa
+  for (int i = model.nbodies - 1; i >= 0; --i) {
+    TraceHook<S>::enter(i, Pass::ArticulatedInertia);
+    const int k = model.q_index[i];
+    const int p = model.parent[i];
+    ws.U[i] = mul(ws.IA[i], joint_motion(model, i, S(1)));
+    ws.D[i] = joint_project(model, i, ws.U[i]);
+    ws.u[i] = tau[k] - joint_project(model, i, ws.pA[i]);
+    if (p < 0) continue;
+    const Force<S>& U = ws.U[i];
+    const S& D = ws.D[i];
+    const Force<S> Ud{{U.ang.x / D, U.ang.y / D, U.ang.z / D}, {U.lin.x / D, U.lin.y / D, U.lin.z / D}};
+    const ArticulatedInertia<S>& A = ws.IA[i];
+    ArticulatedInertia<S> Ia;
+    Ia.I = {A.I.xx - U.ang.x * Ud.ang.x, A.I.yy - U.ang.y * Ud.ang.y, A.I.zz - U.ang.z * Ud.ang.z,
+            A.I.xy - U.ang.x * Ud.ang.y, A.I.xz - U.ang.x * Ud.ang.z, A.I.yz - U.ang.y * Ud.ang.z};
+    Ia.H = {A.H.xx - U.ang.x * Ud.lin.x, A.H.xy - U.ang.x * Ud.lin.y, A.H.xz - U.ang.x * Ud.lin.z,
+            A.H.yx - U.ang.y * Ud.lin.x, A.H.yy - U.ang.y * Ud.lin.y, A.H.yz - U.ang.y * Ud.lin.z,
+            A.H.zx - U.ang.z * Ud.lin.x, A.H.zy - U.ang.z * Ud.lin.y, A.H.zz - U.ang.z * Ud.lin.z};
+    Ia.M = {A.M.xx - U.lin.x * Ud.lin.x, A.M.yy - U.lin.y * Ud.lin.y, A.M.zz - U.lin.z * Ud.lin.z,
+            A.M.xy - U.lin.x * Ud.lin.y, A.M.xz - U.lin.x * Ud.lin.z, A.M.yz - U.lin.y * Ud.lin.z};
+    const S& u = ws.u[i];
+    const Force<S> pa = ws.pA[i] + mul(Ia, ws.c[i]) +
+                        Force<S>{scale(Ud.ang, u), scale(Ud.lin, u)};
+    ws.IA[p] = ws.IA[p] + apply_inertia_T(ws.Xup[i], Ia);
+    ws.pA[p] = ws.pA[p] + apply_force_T(ws.Xup[i], pa);
+  }
+
+  // acceleration pass: a' = Xup a_p + c_i, qdd_i = (u_i - U_i^T a') / D_i, a_i = a' + S qdd_i
+  for (int i = 0; i < model.nbodies; ++i) {
+    TraceHook<S>::enter(i, Pass::Acceleration);
+    const int k = model.q_index[i];
+    const int p = model.parent[i];
+    const Motion<S> a1 = p < 0 ? apply_motion(ws.Xup[i], a0)
+                               : apply_motion(ws.Xup[i], ws.a[p]) + ws.c[i];
+    const Force<S>& U = ws.U[i];
+    qdd[k] = (ws.u[i] - (dot(U.ang, a1.ang) + dot(U.lin, a1.lin))) / ws.D[i];
+    ws.a[i] = a1 + joint_motion(model, i, qdd[k]);
+  }
+}
+
+}  // namespace dyngen

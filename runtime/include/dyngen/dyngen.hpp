@@ -1,0 +1,10 @@
+// The dyngen runtime: spatial algebra, models, and the RNEA, CRBA and ABA algorithms,
+// templated on the scalar type.
+#pragma once
+
+#include "dyngen/aba.hpp"
+#include "dyngen/crba.hpp"
+#include "dyngen/model.hpp"
+#include "dyngen/model_builder.hpp"
+#include "dyngen/rnea.hpp"
+#include "dyngen/workspace.hpp"

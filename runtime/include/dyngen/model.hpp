@@ -1,0 +1,119 @@
+// The immutable robot model: bodies in topological order (parent[i] < i), one 1-DoF joint
+// per body, structure-of-arrays like MuJoCo's mjModel.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "dyngen/spatial.hpp"
+
+namespace dyngen {
+
+/// Joint kinds. Axis-aligned revolute joints have their own kinds so that the joint
+/// rotation has exact zeros and ones (the general formula puts (1-c)+c on the diagonal).
+enum class JointType : std::uint8_t { RevoluteX, RevoluteY, RevoluteZ, Revolute, Prismatic };
+
+inline const char* joint_type_name(JointType t) {
+  switch (t) {
+    case JointType::RevoluteX: return "RevoluteX";
+    case JointType::RevoluteY: return "RevoluteY";
+    case JointType::RevoluteZ: return "RevoluteZ";
+    case JointType::Revolute: return "Revolute";
+    case JointType::Prismatic: return "Prismatic";
+  }
+  return "?";
+}
+
+inline bool is_revolute(JointType t) { return t != JointType::Prismatic; }
+
+template <class S>
+struct Model {
+  int nbodies = 0;                     // bodies, not counting the fixed base
+  int nq = 0;                          // configuration size (one per joint)
+  int nv = 0;                          // velocity size (one per joint)
+  std::vector<int> parent;             // [nbodies] parent body, -1 for the base; parent[i] < i
+  std::vector<JointType> joint_type;   // [nbodies]
+  std::vector<Vec3<S>> joint_axis;     // [nbodies] unit axis, body coordinates
+  std::vector<Xform<S>> X_tree;        // [nbodies] joint frame at q = 0 relative to parent
+  std::vector<RigidInertia<S>> I;      // [nbodies] about the body origin, body coordinates
+  std::vector<int> q_index;            // [nbodies] index of the joint's q, v, tau
+  Vec3<S> gravity;                     // gravitational acceleration, base coordinates
+  std::vector<std::string> body_name;  // [nbodies]
+  std::vector<std::string> joint_name; // [nbodies]
+
+  /// The same model in another scalar type; each constant is converted with static_cast.
+  template <class T>
+  Model<T> cast() const {
+    Model<T> m;
+    m.nbodies = nbodies;
+    m.nq = nq;
+    m.nv = nv;
+    m.parent = parent;
+    m.joint_type = joint_type;
+    m.q_index = q_index;
+    m.body_name = body_name;
+    m.joint_name = joint_name;
+    m.gravity = cast_vec<T>(gravity);
+    for (int i = 0; i < nbodies; ++i) {
+      m.joint_axis.push_back(cast_vec<T>(joint_axis[i]));
+      const Mat3<S>& E = X_tree[i].E;
+      m.X_tree.push_back({{c<T>(E.xx), c<T>(E.xy), c<T>(E.xz), c<T>(E.yx), c<T>(E.yy),
+                           c<T>(E.yz), c<T>(E.zx), c<T>(E.zy), c<T>(E.zz)},
+                          cast_vec<T>(X_tree[i].r)});
+      const Sym3<S>& J = I[i].I;
+      m.I.push_back({c<T>(I[i].m), cast_vec<T>(I[i].h),
+                     {c<T>(J.xx), c<T>(J.yy), c<T>(J.zz), c<T>(J.xy), c<T>(J.xz), c<T>(J.yz)}});
+    }
+    return m;
+  }
+
+ private:
+  template <class T>
+  static T c(const S& x) {
+    return static_cast<T>(x);
+  }
+  template <class T>
+  static Vec3<T> cast_vec(const Vec3<S>& v) {
+    return {c<T>(v.x), c<T>(v.y), c<T>(v.z)};
+  }
+};
+
+/// One body of a model as plain numbers: what generated model tables hold.
+struct BodyRecord {
+  const char* body_name;
+  const char* joint_name;
+  int parent;
+  JointType joint_type;
+  double axis[3];
+  double E[9];  // row-major
+  double r[3];
+  double mass;
+  double h[3];
+  double I[6];  // xx, yy, zz, xy, xz, yz
+};
+
+/// Rebuilds a model from its records (the inverse of model_records()).
+inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
+                                        const double (&gravity)[3]) {
+  Model<double> m;
+  m.nbodies = static_cast<int>(bodies.size());
+  m.nq = m.nv = m.nbodies;
+  m.gravity = {gravity[0], gravity[1], gravity[2]};
+  int index = 0;
+  for (const BodyRecord& b : bodies) {
+    m.parent.push_back(b.parent);
+    m.joint_type.push_back(b.joint_type);
+    m.joint_axis.push_back({b.axis[0], b.axis[1], b.axis[2]});
+    m.X_tree.push_back({{b.E[0], b.E[1], b.E[2], b.E[3], b.E[4], b.E[5], b.E[6], b.E[7], b.E[8]},
+                        {b.r[0], b.r[1], b.r[2]}});
+    m.I.push_back({b.mass, {b.h[0], b.h[1], b.h[2]}, {b.I[0], b.I[1], b.I[2], b.I[3], b.I[4], b.I[5]}});
+    m.q_index.push_back(index++);
+    m.body_name.emplace_back(b.body_name);
+    m.joint_name.emplace_back(b.joint_name);
+  }
+  return m;
+}
+
+}  // namespace dyngen

@@ -1,0 +1,208 @@
+// Builds a Model<double> from links and joints: orders bodies topologically, merges links
+// attached by fixed joints into their parent body, and computes every model constant (frame
+// rotations, first moments, inertias about body origins). The generator and users share it,
+// so both paths see the same numbers. Knows nothing of file formats.
+#pragma once
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dyngen/model.hpp"
+
+namespace dyngen {
+
+struct ModelError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A link's inertia as URDF gives it: mass, centre of mass c and the inertia tensor about c,
+/// expressed in a frame rotated by R (columns: inertial axes in link coordinates).
+struct LinkSpec {
+  std::string name;
+  double mass = 0;
+  Vec3<double> com;
+  Mat3<double> R{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  Sym3<double> I_com;
+};
+
+enum class JointKind { Revolute, Prismatic, Fixed };
+
+/// A joint: the child frame sits at xyz in the parent frame, rotated by R (columns: child axes
+/// in parent coordinates); the axis is in child coordinates.
+struct JointSpec {
+  std::string name;
+  JointKind kind = JointKind::Fixed;
+  std::string parent, child;
+  Vec3<double> xyz;
+  Mat3<double> R{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  Vec3<double> axis{1, 0, 0};
+};
+
+/// R from roll, pitch, yaw about fixed x, y, z axes: R = Rz(yaw) Ry(pitch) Rx(roll).
+inline Mat3<double> rotation_from_rpy(double roll, double pitch, double yaw) {
+  const double cr = std::cos(roll), sr = std::sin(roll);
+  const double cp = std::cos(pitch), sp = std::sin(pitch);
+  const double cy = std::cos(yaw), sy = std::sin(yaw);
+  return {cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
+          sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+          -sp,     cp * sr,                cp * cr};
+}
+
+/// R from a unit quaternion (x, y, z, w).
+inline Mat3<double> rotation_from_quaternion(double x, double y, double z, double w) {
+  return {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
+          2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+          2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+}
+
+/// Inertia of a link about its own origin, in link coordinates:
+/// I_o = R I_c R^T + m (|c|^2 1 - c c^T), h = m c (parallel axis theorem).
+inline RigidInertia<double> link_inertia(const LinkSpec& link) {
+  const Mat3<double>& R = link.R;
+  const Mat3<double> RT{R.xx, R.yx, R.zx, R.xy, R.yy, R.zy, R.xz, R.yz, R.zz};
+  const Sym3<double> Ic = rotate_T(RT, link.I_com);
+  const double m = link.mass;
+  const Vec3<double>& c = link.com;
+  return {m, scale(c, m),
+          {Ic.xx + m * (c.y * c.y + c.z * c.z), Ic.yy + m * (c.x * c.x + c.z * c.z),
+           Ic.zz + m * (c.x * c.x + c.y * c.y), Ic.xy - m * c.x * c.y, Ic.xz - m * c.x * c.z,
+           Ic.yz - m * c.y * c.z}};
+}
+
+class ModelBuilder {
+ public:
+  void add_link(const LinkSpec& link) {
+    if (link_index_.count(link.name)) throw ModelError("link '" + link.name + "' is defined twice");
+    link_index_[link.name] = static_cast<int>(links_.size());
+    links_.push_back(link);
+  }
+
+  void add_joint(const JointSpec& joint) {
+    for (const JointSpec& j : joints_)
+      if (j.name == joint.name) throw ModelError("joint '" + joint.name + "' is defined twice");
+    joints_.push_back(joint);
+  }
+
+  /// Turns a joint into a fixed one, at q = 0.
+  void lock(const std::string& joint_name) {
+    for (JointSpec& j : joints_)
+      if (j.name == joint_name) {
+        j.kind = JointKind::Fixed;
+        return;
+      }
+    throw ModelError("cannot lock joint '" + joint_name + "': no joint of that name");
+  }
+
+  const std::vector<LinkSpec>& links() const { return links_; }
+  const std::vector<JointSpec>& joints() const { return joints_; }
+
+  /// The model rooted at the one link without a parent joint, which is fixed to the world.
+  Model<double> build(const Vec3<double>& gravity) const {
+    const int nlinks = static_cast<int>(links_.size());
+    std::vector<int> parent_joint(nlinks, -1);
+    std::vector<std::vector<int>> child_joints(nlinks);
+    for (int j = 0; j < static_cast<int>(joints_.size()); ++j) {
+      const JointSpec& joint = joints_[j];
+      const int p = find_link(joint.parent, joint.name, "parent");
+      const int c = find_link(joint.child, joint.name, "child");
+      if (parent_joint[c] >= 0)
+        throw ModelError("link '" + joint.child + "' has two parent joints, '" +
+                         joints_[parent_joint[c]].name + "' and '" + joint.name +
+                         "' (the tree has a loop)");
+      parent_joint[c] = j;
+      child_joints[p].push_back(j);
+    }
+    std::vector<int> roots;
+    for (int l = 0; l < nlinks; ++l)
+      if (parent_joint[l] < 0) roots.push_back(l);
+    if (roots.size() != 1) {
+      std::string names;
+      for (int l : roots) names += (names.empty() ? "'" : ", '") + links_[l].name + "'";
+      throw ModelError(roots.empty() ? "no root link: every link has a parent (the tree has a loop)"
+                                     : "more than one root link: " + names);
+    }
+
+    Model<double> model;
+    model.gravity = gravity;
+    const int visited = visit(model, child_joints, roots[0], -1, identity());
+    if (visited != nlinks)
+      throw ModelError("some links are not connected to the root link '" + links_[roots[0]].name +
+                       "' (the tree has a loop)");
+    model.nq = model.nv = model.nbodies;
+    return model;
+  }
+
+ private:
+  // Depth-first from link l, which belongs to body `body` (-1: the fixed base) and whose
+  // frame is X_link_body from the body's. Bodies are numbered in preorder, so parent < child;
+  // links on fixed joints add their inertia to their body. Returns the links visited.
+  int visit(Model<double>& model, const std::vector<std::vector<int>>& child_joints, int l,
+            int body, const Xform<double>& X_link_body) const {
+    int visited = 1;
+    for (const int j : child_joints[l]) {
+      const JointSpec& joint = joints_[j];
+      const int c = link_index_.at(joint.child);
+      const Xform<double> X_child_body = compose(Xform<double>{transpose(joint.R), joint.xyz},
+                                                 X_link_body);
+      if (joint.kind == JointKind::Fixed) {
+        if (body >= 0)
+          model.I[body] = model.I[body] + apply_inertia_T(X_child_body, link_inertia(links_[c]));
+        visited += visit(model, child_joints, c, body, X_child_body);
+      } else {
+        const int b = model.nbodies++;
+        model.parent.push_back(body);
+        model.X_tree.push_back(X_child_body);
+        add_joint_type(model, joint);
+        model.q_index.push_back(b);
+        model.body_name.push_back(links_[c].name);
+        model.joint_name.push_back(joint.name);
+        model.I.push_back(link_inertia(links_[c]));
+        visited += visit(model, child_joints, c, b, identity());
+      }
+    }
+    return visited;
+  }
+
+  static Xform<double> identity() { return {{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}}; }
+
+  static Mat3<double> transpose(const Mat3<double>& R) {
+    return {R.xx, R.yx, R.zx, R.xy, R.yy, R.zy, R.xz, R.yz, R.zz};
+  }
+
+  int find_link(const std::string& name, const std::string& joint, const char* role) const {
+    const auto it = link_index_.find(name);
+    if (it == link_index_.end())
+      throw ModelError(std::string(role) + " link '" + name + "' of joint '" + joint +
+                       "' is not defined");
+    return it->second;
+  }
+
+  static void add_joint_type(Model<double>& model, const JointSpec& joint) {
+    const Vec3<double>& a = joint.axis;
+    const double norm = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    if (!(norm > 0) || !std::isfinite(norm))
+      throw ModelError("joint '" + joint.name + "' has a zero or non-finite axis");
+    const Vec3<double> k = norm == 1 ? a : Vec3<double>{a.x / norm, a.y / norm, a.z / norm};
+    model.joint_axis.push_back(k);
+    if (joint.kind == JointKind::Prismatic) {
+      model.joint_type.push_back(JointType::Prismatic);
+    } else if (k.y == 0 && k.z == 0) {
+      model.joint_type.push_back(JointType::RevoluteX);
+    } else if (k.x == 0 && k.z == 0) {
+      model.joint_type.push_back(JointType::RevoluteY);
+    } else if (k.x == 0 && k.y == 0) {
+      model.joint_type.push_back(JointType::RevoluteZ);
+    } else {
+      model.joint_type.push_back(JointType::Revolute);
+    }
+  }
+
+  std::vector<LinkSpec> links_;
+  std::vector<JointSpec> joints_;
+  std::map<std::string, int> link_index_;
+};
+
+}  // namespace dyngen

@@ -1,0 +1,293 @@
+// Spatial algebra with explicit scalar arithmetic in a fixed order.
+//
+// Every kernel spells out its operations so that runtime<double> and the symbolic trace
+// (generator/) perform the same floating-point operations in the same order. Conventions
+// follow Featherstone, "Rigid Body Dynamics Algorithms" (RBDA): spatial vectors are
+// [angular; linear]; X = rot(E) * xlt(r), where E maps parent to child coordinates and r is
+// the child origin in parent coordinates (RBDA sec. 2.8).
+#pragma once
+
+namespace dyngen {
+
+template <class S>
+struct Vec3 {
+  S x{}, y{}, z{};
+};
+
+/// 3x3 matrix, row-major.
+template <class S>
+struct Mat3 {
+  S xx{}, xy{}, xz{}, yx{}, yy{}, yz{}, zx{}, zy{}, zz{};
+};
+
+/// Symmetric 3x3 matrix (upper triangle).
+template <class S>
+struct Sym3 {
+  S xx{}, yy{}, zz{}, xy{}, xz{}, yz{};
+};
+
+/// Spatial motion vector [w; v].
+template <class S>
+struct Motion {
+  Vec3<S> ang, lin;
+};
+
+/// Spatial force vector [n; f].
+template <class S>
+struct Force {
+  Vec3<S> ang, lin;
+};
+
+/// Plucker transform X = rot(E) xlt(r).
+template <class S>
+struct Xform {
+  Mat3<S> E;
+  Vec3<S> r;
+};
+
+/// Rigid-body inertia about the frame origin: mass m, first moment h = m c, rotational
+/// inertia I about the origin. Composite inertias add component-wise (RBDA sec. 2.13).
+template <class S>
+struct RigidInertia {
+  S m{};
+  Vec3<S> h;
+  Sym3<S> I;
+};
+
+/// Articulated-body inertia [I H; H^T M], symmetric 6x6 (RBDA sec. 7.1).
+template <class S>
+struct ArticulatedInertia {
+  Sym3<S> I;
+  Mat3<S> H;
+  Sym3<S> M;
+};
+
+// ---- 3-vectors and 3x3 matrices -------------------------------------------------------
+
+template <class S>
+Vec3<S> operator+(const Vec3<S>& a, const Vec3<S>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+
+template <class S>
+Vec3<S> operator-(const Vec3<S>& a, const Vec3<S>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+template <class S>
+Vec3<S> scale(const Vec3<S>& a, const S& k) {
+  return {a.x * k, a.y * k, a.z * k};
+}
+
+template <class S>
+S dot(const Vec3<S>& a, const Vec3<S>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+template <class S>
+Vec3<S> cross(const Vec3<S>& a, const Vec3<S>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+/// E v
+template <class S>
+Vec3<S> mul(const Mat3<S>& E, const Vec3<S>& v) {
+  return {E.xx * v.x + E.xy * v.y + E.xz * v.z, E.yx * v.x + E.yy * v.y + E.yz * v.z,
+          E.zx * v.x + E.zy * v.y + E.zz * v.z};
+}
+
+/// E^T v
+template <class S>
+Vec3<S> mul_T(const Mat3<S>& E, const Vec3<S>& v) {
+  return {E.xx * v.x + E.yx * v.y + E.zx * v.z, E.xy * v.x + E.yy * v.y + E.zy * v.z,
+          E.xz * v.x + E.yz * v.y + E.zz * v.z};
+}
+
+/// A v for symmetric A
+template <class S>
+Vec3<S> mul(const Sym3<S>& A, const Vec3<S>& v) {
+  return {A.xx * v.x + A.xy * v.y + A.xz * v.z, A.xy * v.x + A.yy * v.y + A.yz * v.z,
+          A.xz * v.x + A.yz * v.y + A.zz * v.z};
+}
+
+/// A B
+template <class S>
+Mat3<S> mul(const Mat3<S>& A, const Mat3<S>& B) {
+  return {A.xx * B.xx + A.xy * B.yx + A.xz * B.zx, A.xx * B.xy + A.xy * B.yy + A.xz * B.zy,
+          A.xx * B.xz + A.xy * B.yz + A.xz * B.zz, A.yx * B.xx + A.yy * B.yx + A.yz * B.zx,
+          A.yx * B.xy + A.yy * B.yy + A.yz * B.zy, A.yx * B.xz + A.yy * B.yz + A.yz * B.zz,
+          A.zx * B.xx + A.zy * B.yx + A.zz * B.zx, A.zx * B.xy + A.zy * B.yy + A.zz * B.zy,
+          A.zx * B.xz + A.zy * B.yz + A.zz * B.zz};
+}
+
+/// E^T A E for symmetric A (a rotation of coordinates).
+template <class S>
+Sym3<S> rotate_T(const Mat3<S>& E, const Sym3<S>& A) {
+  // columns of A E
+  const Vec3<S> c0 = mul(A, Vec3<S>{E.xx, E.yx, E.zx});
+  const Vec3<S> c1 = mul(A, Vec3<S>{E.xy, E.yy, E.zy});
+  const Vec3<S> c2 = mul(A, Vec3<S>{E.xz, E.yz, E.zz});
+  const Vec3<S> e0{E.xx, E.yx, E.zx}, e1{E.xy, E.yy, E.zy}, e2{E.xz, E.yz, E.zz};
+  return {dot(e0, c0), dot(e1, c1), dot(e2, c2), dot(e0, c1), dot(e0, c2), dot(e1, c2)};
+}
+
+/// E^T A E for a general A.
+template <class S>
+Mat3<S> rotate_T(const Mat3<S>& E, const Mat3<S>& A) {
+  const Mat3<S> AE = mul(A, E);
+  const Vec3<S> e0{E.xx, E.yx, E.zx}, e1{E.xy, E.yy, E.zy}, e2{E.xz, E.yz, E.zz};
+  const Vec3<S> c0{AE.xx, AE.yx, AE.zx}, c1{AE.xy, AE.yy, AE.zy}, c2{AE.xz, AE.yz, AE.zz};
+  return {dot(e0, c0), dot(e0, c1), dot(e0, c2), dot(e1, c0), dot(e1, c1),
+          dot(e1, c2), dot(e2, c0), dot(e2, c1), dot(e2, c2)};
+}
+
+// ---- transforms (RBDA sec. 2.8, Table 2.5) ---------------------------------------------
+
+/// X m = [E w; E (v - r x w)]
+template <class S>
+Motion<S> apply_motion(const Xform<S>& X, const Motion<S>& m) {
+  return {mul(X.E, m.ang), mul(X.E, m.lin - cross(X.r, m.ang))};
+}
+
+/// X^T f, a force in child coordinates expressed in parent coordinates:
+/// [E^T n + r x E^T f; E^T f]
+template <class S>
+Force<S> apply_force_T(const Xform<S>& X, const Force<S>& f) {
+  const Vec3<S> fp = mul_T(X.E, f.lin);
+  return {mul_T(X.E, f.ang) + cross(X.r, fp), fp};
+}
+
+/// X_ac = X_ab X_bc: E = E_ab E_bc, r = r_bc + E_bc^T r_ab
+template <class S>
+Xform<S> compose(const Xform<S>& X_ab, const Xform<S>& X_bc) {
+  return {mul(X_ab.E, X_bc.E), X_bc.r + mul_T(X_bc.E, X_ab.r)};
+}
+
+/// X^T I X for a rigid-body inertia in child coordinates, giving parent coordinates
+/// (RBDA eq. 2.66 in (m, h, I) form): h' = E^T h, hp = h' + m r,
+/// Ip = E^T I E - r x h'x - hp x r x = E^T I E - h' r^T - r hp^T + (r.h' + r.hp) 1.
+template <class S>
+RigidInertia<S> apply_inertia_T(const Xform<S>& X, const RigidInertia<S>& I) {
+  const Vec3<S>& r = X.r;
+  const Vec3<S> h1 = mul_T(X.E, I.h);
+  const Vec3<S> hp = h1 + scale(r, I.m);
+  const Sym3<S> Ir = rotate_T(X.E, I.I);
+  const S d = dot(r, h1) + dot(r, hp);
+  return {I.m, hp,
+          Sym3<S>{Ir.xx - h1.x * r.x - r.x * hp.x + d, Ir.yy - h1.y * r.y - r.y * hp.y + d,
+                  Ir.zz - h1.z * r.z - r.z * hp.z + d, Ir.xy - h1.x * r.y - r.x * hp.y,
+                  Ir.xz - h1.x * r.z - r.x * hp.z, Ir.yz - h1.y * r.z - r.y * hp.z}};
+}
+
+/// rows of A r x: row_i(A) x r
+template <class S>
+Mat3<S> mul_skew(const Mat3<S>& A, const Vec3<S>& r) {
+  const Vec3<S> a0 = cross(Vec3<S>{A.xx, A.xy, A.xz}, r);
+  const Vec3<S> a1 = cross(Vec3<S>{A.yx, A.yy, A.yz}, r);
+  const Vec3<S> a2 = cross(Vec3<S>{A.zx, A.zy, A.zz}, r);
+  return {a0.x, a0.y, a0.z, a1.x, a1.y, a1.z, a2.x, a2.y, a2.z};
+}
+
+/// rows of A r x for symmetric A
+template <class S>
+Mat3<S> mul_skew(const Sym3<S>& A, const Vec3<S>& r) {
+  return mul_skew(Mat3<S>{A.xx, A.xy, A.xz, A.xy, A.yy, A.yz, A.xz, A.yz, A.zz}, r);
+}
+
+/// X^T IA X for an articulated inertia in child coordinates (RBDA eq. 7.43 with X from
+/// Table 2.5): with I', H', M' rotated by E,
+/// M_p = M', H_p = H' + r x M', I_p = I' - K - K^T - r x M' r x, where K = H' r x.
+template <class S>
+ArticulatedInertia<S> apply_inertia_T(const Xform<S>& X, const ArticulatedInertia<S>& A) {
+  const Vec3<S>& r = X.r;
+  const Sym3<S> I1 = rotate_T(X.E, A.I);
+  const Mat3<S> H1 = rotate_T(X.E, A.H);
+  const Sym3<S> M1 = rotate_T(X.E, A.M);
+  const Mat3<S> K = mul_skew(H1, r);
+  const Mat3<S> Q = mul_skew(M1, r);  // M' r x, so r x M' = -Q^T
+  // r x M' r x = r x Q, column j = r x Q(:, j)
+  const Vec3<S> R0 = cross(r, Vec3<S>{Q.xx, Q.yx, Q.zx});
+  const Vec3<S> R1 = cross(r, Vec3<S>{Q.xy, Q.yy, Q.zy});
+  const Vec3<S> R2 = cross(r, Vec3<S>{Q.xz, Q.yz, Q.zz});
+  ArticulatedInertia<S> P;
+  P.M = M1;
+  P.H = {H1.xx - Q.xx, H1.xy - Q.yx, H1.xz - Q.zx, H1.yx - Q.xy, H1.yy - Q.yy,
+         H1.yz - Q.zy, H1.zx - Q.xz, H1.zy - Q.yz, H1.zz - Q.zz};
+  P.I = {I1.xx - K.xx - K.xx - R0.x, I1.yy - K.yy - K.yy - R1.y, I1.zz - K.zz - K.zz - R2.z,
+         I1.xy - K.xy - K.yx - R1.x, I1.xz - K.xz - K.zx - R2.x, I1.yz - K.yz - K.zy - R2.y};
+  return P;
+}
+
+// ---- products (RBDA sec. 2.9, 2.13) ----------------------------------------------------
+
+/// I m for a rigid-body inertia: [I w + h x v; m v - h x w]
+template <class S>
+Force<S> mul(const RigidInertia<S>& I, const Motion<S>& m) {
+  return {mul(I.I, m.ang) + cross(I.h, m.lin), scale(m.lin, I.m) - cross(I.h, m.ang)};
+}
+
+/// IA m for an articulated inertia: [I w + H v; H^T w + M v]
+template <class S>
+Force<S> mul(const ArticulatedInertia<S>& A, const Motion<S>& m) {
+  return {mul(A.I, m.ang) + mul(A.H, m.lin), mul_T(A.H, m.ang) + mul(A.M, m.lin)};
+}
+
+/// The rigid-body inertia as an articulated inertia: [I h x; (h x)^T m 1].
+template <class S>
+ArticulatedInertia<S> articulated(const RigidInertia<S>& I) {
+  const S zero{};
+  return {I.I, Mat3<S>{zero, -I.h.z, I.h.y, I.h.z, zero, -I.h.x, -I.h.y, I.h.x, zero},
+          Sym3<S>{I.m, I.m, I.m, zero, zero, zero}};
+}
+
+/// v x m (RBDA eq. 2.31): [w x m_w; w x m_v + v x m_w]
+template <class S>
+Motion<S> cross_motion(const Motion<S>& v, const Motion<S>& m) {
+  return {cross(v.ang, m.ang), cross(v.ang, m.lin) + cross(v.lin, m.ang)};
+}
+
+/// v x* f (RBDA eq. 2.32): [w x n + v x f; w x f]
+template <class S>
+Force<S> cross_force(const Motion<S>& v, const Force<S>& f) {
+  return {cross(v.ang, f.ang) + cross(v.lin, f.lin), cross(v.ang, f.lin)};
+}
+
+template <class S>
+Motion<S> operator+(const Motion<S>& a, const Motion<S>& b) {
+  return {a.ang + b.ang, a.lin + b.lin};
+}
+
+template <class S>
+Force<S> operator+(const Force<S>& a, const Force<S>& b) {
+  return {a.ang + b.ang, a.lin + b.lin};
+}
+
+template <class S>
+Force<S> operator-(const Force<S>& a, const Force<S>& b) {
+  return {a.ang - b.ang, a.lin - b.lin};
+}
+
+template <class S>
+RigidInertia<S> operator+(const RigidInertia<S>& a, const RigidInertia<S>& b) {
+  return {a.m + b.m, a.h + b.h,
+          Sym3<S>{a.I.xx + b.I.xx, a.I.yy + b.I.yy, a.I.zz + b.I.zz, a.I.xy + b.I.xy,
+                  a.I.xz + b.I.xz, a.I.yz + b.I.yz}};
+}
+
+template <class S>
+Sym3<S> operator+(const Sym3<S>& a, const Sym3<S>& b) {
+  return {a.xx + b.xx, a.yy + b.yy, a.zz + b.zz, a.xy + b.xy, a.xz + b.xz, a.yz + b.yz};
+}
+
+template <class S>
+Mat3<S> operator+(const Mat3<S>& a, const Mat3<S>& b) {
+  return {a.xx + b.xx, a.xy + b.xy, a.xz + b.xz, a.yx + b.yx, a.yy + b.yy,
+          a.yz + b.yz, a.zx + b.zx, a.zy + b.zy, a.zz + b.zz};
+}
+
+template <class S>
+ArticulatedInertia<S> operator+(const ArticulatedInertia<S>& a, const ArticulatedInertia<S>& b) {
+  return {a.I + b.I, a.H + b.H, a.M + b.M};
+}
+
+}  // namespace dyngen
