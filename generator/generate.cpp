@@ -1,5 +1,6 @@
 #include "generate.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -156,7 +157,10 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
 Generated generate(const Robot& robot, const GenerateOptions& options) {
   for (const Algorithm a : options.algorithms)
     if (a == Algorithm::Aba) {
-      const std::vector<int> joints = joints_moving_no_mass(robot.model);
+      std::vector<int> joints = joints_with_massless_subtree(robot.model);
+      for (const int i : joints_moving_no_mass(robot.model))
+        if (std::find(joints.begin(), joints.end(), i) == joints.end()) joints.push_back(i);
+      std::sort(joints.begin(), joints.end());
       if (joints.empty()) break;
       std::string names, locks;
       for (const int i : joints) {

@@ -97,7 +97,8 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
     for (int i = 0; i < model.nbodies; ++i) {
       const int k = model.q_index[i];
       const double Mii = M[k * n + k];
-      if (!(Mii > 0) || !(ws.D[i] > 1e-12 * Mii)) flagged[i] = true;
+      // a NaN D comes from a division by a vanishing D below, which is flagged itself
+      if (!std::isnan(ws.D[i]) && !(ws.D[i] > 1e-12 * Mii)) flagged[i] = true;
     }
   }
   std::vector<int> joints;

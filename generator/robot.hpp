@@ -49,7 +49,8 @@ inline constexpr Vec3<double> default_gravity{0, 0, -9.81};
 Robot load_robot(const std::string& path, const LoadOptions& options = {});
 
 /// Joints whose articulated inertia D vanishes (ABA would divide by zero): D <= 1e-12 of the
-/// joint's own mass-matrix diagonal, or that diagonal 0, at any of a few sampled states.
+/// joint's own mass-matrix diagonal at any of a few sampled states. Joints above them, whose
+/// D the division by zero turns into NaN, are not listed.
 std::vector<int> joints_moving_no_mass(const Model<double>& model);
 
 /// Joints whose whole subtree has zero mass and inertia.
