@@ -51,6 +51,37 @@ const std::set<std::string> known_joint_children{"origin", "parent", "child", "a
                                                  "dynamics", "safety_controller", "calibration",
                                                  "mimic"};
 
+/// urdfdom reports a loop only as "no root link"; this names the joints on it.
+void check_no_loop(const std::string& path, const tinyxml2::XMLElement* robot) {
+  std::map<std::string, std::pair<std::string, std::string>> up;  // child -> (joint, parent)
+  std::vector<std::string> children;
+  for (const auto* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+    const auto* parent = j->FirstChildElement("parent");
+    const auto* child = j->FirstChildElement("child");
+    // incomplete joints are urdfdom's to report
+    if (!j->Attribute("name") || !parent || !child || !parent->Attribute("link") ||
+        !child->Attribute("link"))
+      continue;
+    if (up.emplace(child->Attribute("link"),
+                   std::pair{std::string(j->Attribute("name")), parent->Attribute("link")})
+            .second)
+      children.emplace_back(child->Attribute("link"));
+  }
+  for (const std::string& start : children) {
+    std::string joints, link = start;
+    for (std::size_t step = 0; step < up.size(); ++step) {
+      const auto it = up.find(link);
+      if (it == up.end()) break;
+      joints += (joints.empty() ? "'" : ", '") + it->second.first + "'";
+      link = it->second.second;
+      if (link == start)
+        throw InputError(fmt::format(
+            "{}: joints {} form a loop (link '{}' is its own ancestor); a URDF must be a tree",
+            path, joints, start));
+    }
+  }
+}
+
 }  // namespace
 
 RobotDescription parse_urdf(const std::string& path) {
@@ -63,6 +94,7 @@ RobotDescription parse_urdf(const std::string& path) {
                                  doc.ErrorStr()));
   const tinyxml2::XMLElement* root = doc.FirstChildElement("robot");
   if (!root) throw InputError(fmt::format("{}: not a URDF: no <robot> element", path));
+  check_no_loop(path, root);
   std::vector<std::string> joint_order;
   std::set<std::string> ignored;
   for (const auto* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
@@ -86,7 +118,8 @@ RobotDescription parse_urdf(const std::string& path) {
     urdf = urdf::parseURDF(xml);
     for (const std::string& w : messages.warnings)
       robot.warnings.push_back(fmt::format("{}: {}", path, w));
-    if (!urdf) {
+    // urdfdom logs some errors (an unreadable <inertial> number) and still returns a model
+    if (!urdf || !messages.errors.empty()) {
       std::string why;
       for (const std::string& e : messages.errors) why += (why.empty() ? "" : "; ") + e;
       throw InputError(fmt::format("{}: invalid URDF: {}", path, why.empty() ? "urdfdom rejected it" : why));

@@ -109,7 +109,8 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
 
 Robot load_robot(const std::string& path, const LoadOptions& options) {
   if (!std::filesystem::is_regular_file(path))
-    throw InputError(fmt::format("{}: no such file", path));
+    throw InputError(fmt::format(
+        "{}: {}", path, std::filesystem::exists(path) ? "not a regular file" : "no such file"));
   RobotDescription description;
   if (has_extension(path, {".urdf", ".xml"})) {
     description = parse_urdf(path);

@@ -1,0 +1,17 @@
+# Configures, builds and tests a generated directory with its own CMakeLists.txt, as a user
+# would: cmake -S SOURCE -B BINARY -Ddyngen_DIR=... && cmake --build && ctest.
+file(REMOVE_RECURSE ${BINARY})
+foreach(step IN ITEMS configure build test)
+  if(step STREQUAL "configure")
+    set(cmd ${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} -Ddyngen_DIR=${dyngen_DIR})
+  elseif(step STREQUAL "build")
+    set(cmd ${CMAKE_COMMAND} --build ${BINARY})
+  else()
+    set(cmd ${CMAKE_CTEST_COMMAND} --test-dir ${BINARY} --output-on-failure)
+  endif()
+  execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${step} failed:\n${out}")
+  endif()
+endforeach()
+message(STATUS "${out}")

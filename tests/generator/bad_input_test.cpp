@@ -1,0 +1,366 @@
+// Bad input (DESIGN.md, "Errors and warnings"): every error names the file, the element and the
+// problem, through the library and through the dyngen command, which exits non-zero and writes
+// nothing. Imperfect real-world URDFs load with warnings instead.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "generate.hpp"
+#include "robot.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace dyngen::gen;
+
+const std::string bad = DYNGEN_TEST_BAD;
+const std::string models = DYNGEN_TEST_MODELS;
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A fresh directory per test, removed afterwards; ctest runs each test in its own process.
+class Scratch : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = fs::temp_directory_path() / ("dyngen-bad-input-" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::permissions(dir, fs::perms::owner_all, fs::perm_options::add, ignored);
+    fs::remove_all(dir, ignored);
+  }
+  fs::path dir;
+};
+
+struct CliResult {
+  int status;  // exit status, -1 if dyngen did not exit normally (a crash)
+  std::string out, err;
+};
+
+std::string shell_quoted(const std::string& s) {
+  std::string out = "'";
+  for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+/// Runs the built dyngen; its stdout and stderr go to files in `scratch`.
+CliResult run_dyngen(const std::vector<std::string>& args, const fs::path& scratch) {
+  std::string command = shell_quoted(DYNGEN_EXECUTABLE);
+  for (const std::string& a : args) command += " " + shell_quoted(a);
+  const fs::path out = scratch / "stdout.txt", err = scratch / "stderr.txt";
+  command += " >" + shell_quoted(out) + " 2>" + shell_quoted(err);
+  const int raw = std::system(command.c_str());
+  CliResult r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(out), read(err)};
+  fs::remove(out);
+  fs::remove(err);
+  return r;
+}
+
+/// Every entry under dir with its contents (directories as "<dir>").
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> entries;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    entries[fs::relative(e.path(), dir).string()] =
+        e.is_directory() ? std::string("<dir>") : read(e.path());
+  return entries;
+}
+
+std::vector<std::string> entries_of(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  return names;
+}
+
+/// The options of the command line that the library takes too.
+LoadOptions load_options(const std::vector<std::string>& options) {
+  LoadOptions load;
+  for (std::size_t k = 0; k + 1 < options.size(); ++k)
+    if (options[k] == "--lock") load.lock.push_back(options[k + 1]);
+  return load;
+}
+
+/// What the library throws for a robot, loading it and generating every algorithm.
+std::string library_error(const std::string& robot, const LoadOptions& load) {
+  try {
+    const Robot r = load_robot(robot, load);
+    GenerateOptions options;
+    options.name = "robot";
+    generate(r, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+struct Case {
+  std::string name;                    // test parameter name
+  std::string robot;                   // the input file
+  std::vector<std::string> options;    // further command-line options
+  std::vector<std::string> expected;   // parts of the message: the element and the problem
+  bool library = true;                 // false: only the command line parses these options
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
+const std::vector<Case> cases = {
+    {"MissingFile", bad + "/no_such_robot.urdf", {}, {"no such file"}},
+    {"DirectoryInsteadOfFile", bad, {}, {"not a regular file"}},
+    {"MalformedXml", bad + "/malformed.urdf", {}, {"malformed.urdf:5:", "malformed XML", "link"}},
+    {"NotUrdf", bad + "/not_urdf.urdf", {}, {"not a URDF", "no <robot> element"}},
+    {"FloatingJoint", bad + "/floating_joint.urdf", {},
+     {"joint 'free'", "type 'floating' is not supported"}},
+    {"PlanarJoint", bad + "/planar_joint.urdf", {},
+     {"joint 'free'", "type 'planar' is not supported"}},
+    {"LinkWithTwoParents", bad + "/two_parents.urdf", {},
+     {"link 'tip'", "two parent joints", "'left_to_tip'", "'right_to_tip'", "loop"}},
+    {"LoopWithoutRoot", bad + "/cycle.urdf", {}, {"joints 'a_to_b', 'b_to_a'", "form a loop"}},
+    {"UndefinedParentLink", bad + "/undefined_parent.urdf", {},
+     {"parent link [torso]", "joint [shoulder]", "not found"}},
+    {"NegativeMassUrdf", bad + "/negative_mass.urdf", {}, {"link 'arm'", "mass is negative (-1)"}},
+    {"InfiniteMassUrdf", bad + "/infinite_mass.urdf", {},
+     {"Link [arm]", "mass [1e999] is not a float"}},
+    {"NanInertiaUrdf", bad + "/nan_inertia.urdf", {},
+     {"Link [arm]", "inertia element iyy is not a valid double"}},
+    {"NegativeEigenvalueUrdf", bad + "/negative_eigenvalue.urdf", {},
+     {"link 'arm'", "negative eigenvalue (-1;"}},
+    {"ZeroAxisUrdf", bad + "/zero_axis.urdf", {}, {"joint 'shoulder'", "zero or non-finite axis"}},
+    {"LockUnknownJoint", models + "/ur5.urdf", {"--lock", "no_such_joint"},
+     {"joint 'no_such_joint'", "no joint of that name"}},
+    {"UnknownExtension", bad + "/robot.sdf", {}, {"unknown kind of robot file", ".urdf", ".yaml"}},
+    {"MalformedYaml", bad + "/malformed.yaml", {}, {"malformed.yaml:7:", "malformed YAML"}},
+    {"ChainUnknownKey", bad + "/unknown_key.yaml", {},
+     {"unknown_key.yaml:8:", "links[1]", "unknown key 'lenght'", "allowed:"}},
+    {"ChainMissingMass", bad + "/missing_mass.yaml", {},
+     {"missing_mass.yaml:7:", "links[1]", "missing 'mass'"}},
+    {"ChainBadJointType", bad + "/bad_joint_type.yaml", {},
+     {"links[0].joint.type", "joint type 'spherical' is not supported"}},
+    {"ChainMassNotANumber", bad + "/mass_not_number.yaml", {},
+     {"links[0].mass", "expected a number"}},
+    {"ChainInfiniteMass", bad + "/infinite_mass.yaml", {},
+     {"links[0].mass", "expected a finite number"}},
+    {"ChainNanInertia", bad + "/nan_inertia.yaml", {},
+     {"links[0].inertia.iyy", "expected a finite number"}},
+    {"ChainNegativeMass", bad + "/negative_mass.yaml", {}, {"link 'link1'", "mass is negative"}},
+    {"ChainNegativeEigenvalue", bad + "/negative_eigenvalue.yaml", {},
+     {"link 'link1'", "negative eigenvalue"}},
+    {"ChainZeroAxis", bad + "/zero_axis.yaml", {},
+     {"joint 'link1_joint'", "zero or non-finite axis"}},
+    {"ChainVectorOfTwo", bad + "/bad_vector.yaml", {}, {"links[0].com", "expected [x, y, z]"}},
+    {"ChainNoLinks", bad + "/no_links.yaml", {}, {"links", "expected a non-empty list"}},
+    {"ChainDuplicateLink", bad + "/duplicate_link.yaml", {},
+     {"links[1]", "link 'arm' is defined twice"}},
+    {"AbaOnRomeo", models + "/romeo.urdf", {},
+     {"ABA is undefined", "24 joints move no mass", "--lock LHand", "--lock-massless",
+      "--algorithms rnea,crba"}},
+    {"GravityTwoNumbers", models + "/ur5.urdf", {"--gravity", "1,2"},
+     {"--gravity 1,2", "expected three numbers"}, false},
+    {"GravityNotANumber", models + "/ur5.urdf", {"--gravity", "0,x,-9.81"},
+     {"'x' is not a finite number"}, false},
+    {"GravityNan", models + "/ur5.urdf", {"--gravity", "nan,0,0"},
+     {"'nan' is not a finite number"}, false},
+    {"GravityInfinite", models + "/ur5.urdf", {"--gravity", "0,0,-inf"},
+     {"'-inf' is not a finite number"}, false},
+    {"GravityTrailingText", models + "/ur5.urdf", {"--gravity", "0,0,-9.81m"},
+     {"'-9.81m' is not a finite number"}, false},
+    {"AlgorithmUnknown", models + "/ur5.urdf", {"--algorithms", "rnea,foo"},
+     {"unknown algorithm 'foo'"}, false},
+    {"AlgorithmsEmpty", models + "/ur5.urdf", {"--algorithms", ""},
+     {"--algorithms", "name at least one"}, false},
+    {"ScalarUnknown", models + "/ur5.urdf", {"--scalar", "half"}, {"--scalar", "half"}, false},
+};
+
+class BadInput : public Scratch, public ::testing::WithParamInterface<Case> {};
+
+TEST_P(BadInput, LibraryThrowsInputErrorNamingFileElementAndProblem) {
+  const Case& c = GetParam();
+  if (!c.library) GTEST_SKIP() << "an option only the command line parses";
+  const std::string message = library_error(c.robot, load_options(c.options));
+  EXPECT_NE(message.find(c.robot), std::string::npos) << message;
+  for (const std::string& part : c.expected)
+    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+}
+
+TEST_P(BadInput, CommandFailsOnStderrAndCreatesNoOutput) {
+  const Case& c = GetParam();
+  std::vector<std::string> args{c.robot, "-o", (dir / "out").string()};
+  args.insert(args.end(), c.options.begin(), c.options.end());
+  const CliResult r = run_dyngen(args, dir);
+  EXPECT_GT(r.status, 0) << "exit status (-1: did not exit normally)";
+  if (c.library) {
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("dyngen: error: " + c.robot), std::string::npos) << r.err;
+  }
+  for (const std::string& part : c.expected)
+    EXPECT_NE(r.err.find(part), std::string::npos) << "'" << part << "' not in: " << r.err;
+  EXPECT_EQ(r.out.find("error"), std::string::npos) << r.out;
+  // nothing at all, not even a staging directory, is left next to the output path
+  EXPECT_TRUE(entries_of(dir).empty()) << entries_of(dir).front();
+}
+
+TEST_P(BadInput, CommandLeavesAnExistingOutputDirectoryUntouched) {
+  const Case& c = GetParam();
+  const fs::path out = dir / "existing";
+  fs::create_directories(out / "build");
+  std::ofstream(out / "CMakeLists.txt") << "# the user's previous output\n";
+  std::ofstream(out / "notes.txt") << "not dyngen's\n";
+  std::ofstream(out / "build" / "CMakeCache.txt") << "CMAKE_BUILD_TYPE:STRING=Release\n";
+  const auto before = snapshot(out);
+  std::vector<std::string> args{c.robot, "-o", out.string()};
+  args.insert(args.end(), c.options.begin(), c.options.end());
+  const CliResult r = run_dyngen(args, dir);
+  EXPECT_GT(r.status, 0);
+  EXPECT_EQ(snapshot(out), before);
+  EXPECT_EQ(entries_of(dir), std::vector<std::string>{"existing"});
+}
+
+INSTANTIATE_TEST_SUITE_P(Errors, BadInput, ::testing::ValuesIn(cases),
+                         [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
+
+// ---- unreadable files: root reads everything, so these need an ordinary user
+
+class Unreadable : public Scratch, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(Unreadable, LibraryAndCommandSaySo) {
+  if (geteuid() == 0) GTEST_SKIP() << "root can read a file without read permission";
+  const fs::path robot = dir / ("robot" + GetParam());
+  std::ofstream(robot) << read(GetParam() == ".urdf" ? models + "/double_pendulum.urdf"
+                                                     : models + "/planar5.yaml");
+  fs::permissions(robot, fs::perms::none);
+  const std::string message = library_error(robot.string(), {});
+  EXPECT_NE(message.find(robot.string() + ": cannot read the file"), std::string::npos)
+      << message;
+  const CliResult r = run_dyngen({robot.string(), "-o", (dir / "out").string()}, dir);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("cannot read the file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Errors, Unreadable, ::testing::Values(".urdf", ".yaml"),
+                         [](const auto& info) { return info.param.substr(1); });
+
+// ---- romeo: 24 hand and finger joints move no mass, so ABA is undefined
+
+const std::set<std::string> romeo_hand_joints = {
+    "LHand",    "LFinger12", "LFinger13", "LFinger21", "LFinger22", "LFinger23",
+    "LFinger31", "LFinger32", "LFinger33", "LThumb1",   "LThumb2",   "LThumb3",
+    "RHand",    "RFinger12", "RFinger13", "RFinger21", "RFinger22", "RFinger23",
+    "RFinger31", "RFinger32", "RFinger33", "RThumb1",   "RThumb2",   "RThumb3"};
+
+TEST(Romeo, AbaErrorListsExactlyTheHandJointsAndHowToLockThem) {
+  const std::string message = library_error(models + "/romeo.urdf", {});
+  // the list is the first line, after "divide by zero): "
+  const std::size_t from = message.find("): "), to = message.find(".\n");
+  ASSERT_NE(from, std::string::npos) << message;
+  ASSERT_NE(to, std::string::npos) << message;
+  const std::string list = message.substr(from, to - from);
+  std::set<std::string> listed;
+  const std::regex quoted("'([^']+)'");
+  for (auto it = std::sregex_iterator(list.begin(), list.end(), quoted);
+       it != std::sregex_iterator(); ++it)
+    listed.insert((*it)[1]);
+  EXPECT_EQ(listed, romeo_hand_joints) << message;
+  for (const std::string& joint : romeo_hand_joints)
+    EXPECT_NE(message.find("--lock " + joint), std::string::npos) << joint;
+}
+
+TEST(Romeo, LockMasslessLocksTheHandJointsAndAbaGenerates) {
+  LoadOptions load;
+  load.lock_massless = true;
+  const Robot robot = load_robot(models + "/romeo.urdf", load);
+  EXPECT_EQ(std::set<std::string>(robot.locked.begin(), robot.locked.end()), romeo_hand_joints);
+  EXPECT_EQ(robot.model.nv, 55 - 24);
+  GenerateOptions options;
+  options.name = "romeo";
+  const Generated generated = generate(robot, options);
+  ASSERT_EQ(generated.counts.size(), 3u);
+  EXPECT_EQ(generated.counts[2].algorithm, Algorithm::Aba);
+}
+
+TEST(Romeo, RneaAndCrbaAloneGenerateWithEveryJoint) {
+  const Robot robot = load_robot(models + "/romeo.urdf");
+  EXPECT_EQ(robot.model.nv, 55);
+  GenerateOptions options;
+  options.name = "romeo";
+  options.algorithms = {Algorithm::Rnea, Algorithm::Crba};
+  EXPECT_EQ(generate(robot, options).counts.size(), 2u);
+}
+
+using RomeoCommand = Scratch;
+
+TEST_F(RomeoCommand, SucceedsWithLockMasslessOrWithoutAba) {
+  for (const std::vector<std::string>& options :
+       {std::vector<std::string>{"--lock-massless"}, {"--algorithms", "rnea,crba"}}) {
+    const fs::path out = dir / ("out" + options.back());
+    std::vector<std::string> args{models + "/romeo.urdf", "-q", "-o", out.string()};
+    args.insert(args.end(), options.begin(), options.end());
+    const CliResult r = run_dyngen(args, dir);
+    EXPECT_EQ(r.status, 0) << options.back() << ": " << r.err;
+    EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::is_regular_file(out / "romeo_dynamics.cpp")) << options.back();
+  }
+}
+
+// ---- warnings: accepted, reported, output written
+
+const std::vector<std::vector<std::string>> imperfect_warnings = {
+    {"link 'upper'", "break the triangle inequality"},
+    {"links without <inertial>", "'sensor_frame'"},
+    {"<gazebo> is not used"},
+    {"<transmission> is not used"},
+    {"<drake:collision_filter_group> is not used"},
+    {"<drake:rotor_inertia> in <joint> is not used"},
+    {"joint 'follower' mimics 'elbow'", "not supported yet"},
+};
+
+TEST(Warnings, ImperfectUrdfLoadsWithOneWarningPerOddity) {
+  const std::string path = bad + "/imperfect.urdf";
+  const Robot robot = load_robot(path);
+  EXPECT_EQ(robot.model.nv, 3) << "the mimic joint is an independent joint";
+  EXPECT_EQ(robot.warnings.size(), imperfect_warnings.size());
+  for (const std::string& w : robot.warnings) EXPECT_EQ(w.rfind(path + ": ", 0), 0u) << w;
+  for (const auto& parts : imperfect_warnings) {
+    const bool found = std::any_of(robot.warnings.begin(), robot.warnings.end(), [&](auto& w) {
+      return std::all_of(parts.begin(), parts.end(),
+                         [&](auto& p) { return w.find(p) != std::string::npos; });
+    });
+    EXPECT_TRUE(found) << "no warning with '" << parts[0] << "'";
+  }
+}
+
+TEST(Warnings, CleanRobotHasNone) {
+  EXPECT_TRUE(load_robot(models + "/planar5.yaml").warnings.empty());
+}
+
+using WarningsCommand = Scratch;
+
+TEST_F(WarningsCommand, PrintedOnStderrEvenWhenQuietAndOutputWritten) {
+  const CliResult r = run_dyngen({bad + "/imperfect.urdf", "-q", "-o", (dir / "out").string()}, dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  std::size_t lines = 0;
+  for (std::size_t at = r.err.find("dyngen: warning: "); at != std::string::npos;
+       at = r.err.find("dyngen: warning: ", at + 1))
+    ++lines;
+  EXPECT_EQ(lines, imperfect_warnings.size()) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(dir / "out" / "imperfect_dynamics.cpp"));
+}
+
+}  // namespace

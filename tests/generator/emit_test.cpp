@@ -1,0 +1,272 @@
+// Emission: constants print as C++ literals that read back to the same bits (DESIGN.md, "The
+// bit-for-bit contract"), and emitted code carries per-link provenance and none of the artifacts
+// STYLE.md rules out (no "* 1", no "+ 0", no trailing whitespace, no tabs).
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <random>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "emit.hpp"
+#include "generate.hpp"
+#include "robot.hpp"
+
+namespace {
+
+using namespace dyngen;
+using namespace dyngen::gen;
+
+template <class T>
+using Bits = std::conditional_t<std::is_same_v<T, float>, std::uint32_t, std::uint64_t>;
+
+/// Values worth printing: raw generator bits (every finite value is possible), subnormals,
+/// and the edges of the type.
+template <class T>
+std::vector<T> sample_values() {
+  using L = std::numeric_limits<T>;
+  std::vector<T> values = {T(0),          -T(0),           T(1),        T(-1),       T(0.1),
+                           T(-0.1),       T(1) / T(3),     L::min(),    -L::min(),   L::max(),
+                           L::lowest(),   L::denorm_min(), -L::denorm_min(),         L::epsilon(),
+                           T(1e16),       T(123456789),    T(1) + L::epsilon(),      T(9.81)};
+  std::mt19937_64 rng(20240601);
+  const Bits<T> mantissa_mask = (Bits<T>(1) << (L::digits - 1)) - 1;
+  const Bits<T> sign_bit = Bits<T>(1) << (sizeof(T) * 8 - 1);
+  for (int k = 0; k < 100000; ++k) {
+    const T raw = std::bit_cast<T>(static_cast<Bits<T>>(rng()));
+    if (std::isfinite(raw)) values.push_back(raw);
+    // subnormal: exponent field zero
+    values.push_back(std::bit_cast<T>(static_cast<Bits<T>>(rng() & (mantissa_mask | sign_bit))));
+  }
+  return values;
+}
+
+/// Reads a literal the way a C++ compiler does: optional parentheses around a negative value,
+/// an 'f' suffix for float. Fails the test if the text is not a floating literal.
+template <class T>
+T read_back(const std::string& text) {
+  static const std::regex form(R"(^(\(-)?[0-9]+(\.[0-9]*)?(e[+-]?[0-9]+)?(f)?(\))?$)");
+  std::smatch m;
+  EXPECT_TRUE(std::regex_match(text, m, form)) << "'" << text << "' is not a C++ literal";
+  EXPECT_EQ(m[1].matched, m[5].matched) << text << ": unbalanced parentheses";
+  EXPECT_TRUE(m[2].matched || m[3].matched) << text << ": an integer literal, not floating";
+  EXPECT_EQ(m[4].matched, (std::is_same_v<T, float>)) << text << ": wrong suffix for the type";
+  std::string number = text;
+  if (m[1].matched) number = number.substr(1, number.size() - 2);
+  if (m[4].matched) number.pop_back();
+  char* end = nullptr;
+  const T x = std::is_same_v<T, float> ? std::strtof(number.c_str(), &end)
+                                       : static_cast<T>(std::strtod(number.c_str(), &end));
+  EXPECT_EQ(*end, '\0') << text;
+  return x;
+}
+
+template <class T>
+class Literal : public ::testing::Test {};
+using Scalars = ::testing::Types<double, float>;
+TYPED_TEST_SUITE(Literal, Scalars);
+
+TYPED_TEST(Literal, ReadsBackToTheSameBits) {
+  using T = TypeParam;
+  int failures = 0;
+  for (const T x : sample_values<T>()) {
+    const std::string text = literal(x);
+    const T y = read_back<T>(text);
+    if (std::bit_cast<Bits<T>>(x) != std::bit_cast<Bits<T>>(y)) {
+      ADD_FAILURE() << std::hexfloat << static_cast<double>(x) << " printed as " << text
+                    << " reads back as " << static_cast<double>(y);
+      if (++failures == 5) return;
+    }
+    EXPECT_EQ(text.front() == '(', std::signbit(x)) << text;
+  }
+}
+
+TYPED_TEST(Literal, IsShortest) {
+  using T = TypeParam;
+  // at most 17 (double) or 9 (float) significant digits, and short values stay short
+  const std::size_t most = std::is_same_v<T, float> ? 9 : 17;
+  for (const T x : sample_values<T>()) {
+    const std::string text = literal(x);
+    std::size_t digits = 0;
+    bool leading = true;
+    for (const char c : text.substr(0, text.find('e'))) {
+      if (c < '0' || c > '9') continue;
+      leading = leading && c == '0';
+      if (!leading) ++digits;
+    }
+    ASSERT_LE(digits, most) << text;
+  }
+  constexpr bool single = std::is_same_v<T, float>;
+  EXPECT_EQ(literal(T(0.5)), single ? "0.5f" : "0.5");
+  EXPECT_EQ(literal(T(-2)), single ? "(-2.0f)" : "(-2.0)");
+  EXPECT_EQ(literal(-T(0)), single ? "(-0.0f)" : "(-0.0)");
+}
+
+TYPED_TEST(Literal, RejectsNonFiniteConstants) {
+  using T = TypeParam;
+  using L = std::numeric_limits<T>;
+  for (const T x : {L::infinity(), -L::infinity(), L::quiet_NaN(), -L::quiet_NaN()})
+    EXPECT_THROW(literal(x), std::runtime_error) << x;
+}
+
+// ---- emitted code for a small model
+
+std::string generated_source(bool single_precision) {
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/planar5.yaml");
+  GenerateOptions options;
+  options.name = "planar5";
+  options.single_precision = single_precision;
+  for (const GeneratedFile& f : generate(robot, options).files)
+    if (f.name == "planar5_dynamics.cpp") return f.text;
+  ADD_FAILURE() << "no planar5_dynamics.cpp";
+  return {};
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const std::size_t end = std::min(text.find('\n', pos), text.size());
+    lines.push_back(text.substr(pos, end - pos));
+    pos = end + 1;
+  }
+  return lines;
+}
+
+class Emitted : public ::testing::TestWithParam<bool /*float*/> {};
+
+TEST_P(Emitted, SectionHeadersNameLinkJointTypeAndPass) {
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/planar5.yaml");
+  const Model<double>& model = robot.model;
+  const std::string source = generated_source(GetParam());
+  const std::regex header(
+      R"(^    // ---- link '(\w+)' \((\d+)\) <- (base|'(\w+)' \((\d+)\)); joint '(\w+)': )"
+      R"((.+); (forward pass|backward pass|kinematics|composite inertia|velocity pass|)"
+      R"(articulated inertia pass|acceleration pass)$)");
+  std::set<std::pair<int, std::string>> sections;
+  for (const std::string& line : lines_of(source)) {
+    if (line.find("// ----") == std::string::npos || line == "    // ---- outputs") continue;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_match(line, m, header)) << line;
+    const int body = std::stoi(m[2]);
+    ASSERT_LT(body, model.nbodies) << line;
+    EXPECT_EQ(m[1], model.body_name[body]) << line;
+    const int parent = model.parent[body];
+    if (parent < 0) {
+      EXPECT_EQ(m[3], "base") << line;
+    } else {
+      EXPECT_EQ(m[4], model.body_name[parent]) << line;
+      EXPECT_EQ(std::stoi(m[5]), parent) << line;
+    }
+    EXPECT_EQ(m[6], model.joint_name[body]) << line;
+    EXPECT_EQ(m[7], joint_description(model, body)) << line;
+    sections.insert({body, m[8]});
+  }
+  // every link does work in these passes of RNEA and ABA
+  for (int i = 0; i < model.nbodies; ++i)
+    for (const char* pass : {"forward pass", "velocity pass", "acceleration pass"})
+      EXPECT_TRUE(sections.count({i, pass})) << model.body_name[i] << ": no " << pass;
+  EXPECT_NE(source.find("joint 'link1_joint': revolute +z; forward pass"), std::string::npos);
+  EXPECT_NE(source.find("joint 'link4_joint': prismatic axis (1, 0, 0); forward pass"),
+            std::string::npos);
+}
+
+TEST_P(Emitted, NoTrivialOperationsTrailingWhitespaceOrTabs) {
+  const bool single = GetParam();
+  const std::string source = generated_source(single);
+  for (const char* artifact : {"* 1.0;", "* 1.0f;", "+ 0.0;", "+ 0.0f;", "- 0.0;", "- 0.0f;",
+                               " 1.0 * ", " 1.0f * ", " 0.0 + ", " 0.0f + ", "* (-1.0", "\t"})
+    EXPECT_EQ(source.find(artifact), std::string::npos) << "'" << artifact << "'";
+  const std::string type = single ? "float" : "double";
+  const std::regex statement("^    const " + type + R"( (\w+) = (.+);$)");
+  const std::regex binary(R"(^(\S+) ([-+*/]) (\S+)$)");
+  const std::regex constant(R"(^\(?-?[0-9][0-9.e+-]*f?\)?$)");
+  int statements = 0;
+  for (const std::string& line : lines_of(source)) {
+    EXPECT_TRUE(line.empty() || (line.back() != ' ' && line.back() != '\t'))
+        << "trailing whitespace: '" << line << "'";
+    std::smatch s, b;
+    if (!std::regex_match(line, s, statement)) continue;
+    ++statements;
+    const std::string expr = s[2];
+    if (!std::regex_match(expr, b, binary)) continue;
+    const std::string lhs = b[1], op = b[2], rhs = b[3];
+    const bool cl = std::regex_match(lhs, constant), cr = std::regex_match(rhs, constant);
+    EXPECT_FALSE(cl && cr) << "unfolded constants: " << line;
+    auto value = [](std::string t) {
+      t.erase(std::remove_if(t.begin(), t.end(), [](char c) { return c == '(' || c == ')'; }),
+              t.end());
+      return std::strtod(t.c_str(), nullptr);
+    };
+    const bool zero = (cl && value(lhs) == 0) || (cr && value(rhs) == 0);
+    const bool one = (cl && std::abs(value(lhs)) == 1) || (cr && std::abs(value(rhs)) == 1);
+    if (op == "*") {
+      EXPECT_FALSE(zero || one) << line;
+    } else if (op == "/") {
+      EXPECT_FALSE((cl && value(lhs) == 0) || (cr && value(rhs) == 1)) << line;
+    } else {
+      EXPECT_FALSE(zero) << line;
+    }
+  }
+  EXPECT_GT(statements, 100) << "the statement pattern matched nothing";
+}
+
+TEST_P(Emitted, EveryGeneratedFileIsFreeOfTrailingWhitespaceAndTabs) {
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/planar5.yaml");
+  GenerateOptions options;
+  options.name = "planar5";
+  options.single_precision = GetParam();
+  const Generated generated = generate(robot, options);
+  EXPECT_EQ(generated.files.size(), 5u);
+  for (const GeneratedFile& f : generated.files) {
+    EXPECT_FALSE(f.text.empty()) << f.name;
+    EXPECT_EQ(f.text.back(), '\n') << f.name;
+    EXPECT_EQ(f.text.find('\t'), std::string::npos) << f.name;
+    int number = 0;
+    for (const std::string& line : lines_of(f.text)) {
+      ++number;
+      EXPECT_TRUE(line.empty() || line.back() != ' ') << f.name << ":" << number;
+    }
+  }
+}
+
+TEST_P(Emitted, StatementsUseTheScalarTypeAndItsLiterals) {
+  const bool single = GetParam();
+  const std::string source = generated_source(single);
+  const std::string declaration = std::string("    const ") + (single ? "float " : "double ");
+  const std::regex number(R"((^|[ (])([0-9]+\.[0-9]*(e[+-]?[0-9]+)?|[0-9]+e[+-]?[0-9]+)(f?)\b)");
+  int literals = 0;
+  for (const std::string& line : lines_of(source)) {
+    if (line.rfind("    const ", 0) != 0) continue;
+    EXPECT_EQ(line.rfind(declaration, 0), 0u) << line;
+    const std::string expr = line.substr(line.find(" = "));
+    for (auto it = std::sregex_iterator(expr.begin(), expr.end(), number);
+         it != std::sregex_iterator(); ++it, ++literals)
+      EXPECT_EQ((*it)[4].length() == 1, single) << line;
+  }
+  EXPECT_GT(literals, 10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scalars, Emitted, ::testing::Bool(),
+                         [](const auto& info) { return info.param ? "float" : "double"; });
+
+TEST(JointDescription, NamesAxisAlignedAndGeneralJoints) {
+  Model<double> m;
+  m.nbodies = 4;
+  m.joint_type = {JointType::RevoluteX, JointType::RevoluteY, JointType::Revolute,
+                  JointType::Prismatic};
+  m.joint_axis = {{1, 0, 0}, {0, -1, 0}, {0.6, 0, 0.8}, {0, 0, 1}};
+  EXPECT_EQ(joint_description(m, 0), "revolute +x");
+  EXPECT_EQ(joint_description(m, 1), "revolute -y");
+  EXPECT_EQ(joint_description(m, 2), "revolute axis (0.6, 0, 0.8)");
+  EXPECT_EQ(joint_description(m, 3), "prismatic axis (0, 0, 1)");
+}
+
+}  // namespace
