@@ -120,6 +120,15 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
   };
 
   std::string out;
+  for (const std::string& array : program.input_arrays) {
+    bool used = false;
+    for (std::size_t id = 0; id < nodes.size() && !used; ++id)
+      used = live[id] && nodes[id].op == Op::Input &&
+             program.graph.inputs[nodes[id].input].array == array;
+    if (!used)
+      out += fmt::format("    static_cast<void>({});  // no output of this robot depends on it\n\n",
+                         array);
+  }
   int section_body = -2;
   Pass section_pass = Pass::Forward;
   for (std::size_t id = 0; id < nodes.size(); ++id) {

@@ -1,1 +1,324 @@
+// ModelBuilder: merging links on fixed joints into their parent body, locking joints, the
+// choice of axis-aligned joint kinds, topological order, and the errors it reports.
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <numbers>
+
+#include "dyngen/dyngen.hpp"
+#include "test_support.hpp"
+
+namespace dyngen {
+namespace {
+
+using Vector = Eigen::VectorXd;
+using Vector3 = Eigen::Vector3d;
+using Matrix3 = Eigen::Matrix3d;
+using test::dense;
+
+constexpr double eps = std::numeric_limits<double>::epsilon();
+constexpr double pi = std::numbers::pi;
+
+Mat3<double> rpy(double r, double p, double y) { return rotation_from_rpy(r, p, y); }
+
+LinkSpec link(const std::string& name, double mass, const Vec3<double>& com,
+              const Sym3<double>& I_com, const Mat3<double>& R = {1, 0, 0, 0, 1, 0, 0, 0, 1}) {
+  return {.name = name, .mass = mass, .com = com, .R = R, .I_com = I_com};
+}
+
+JointSpec joint(const std::string& name, JointKind kind, const std::string& parent,
+                const std::string& child, const Vec3<double>& xyz, const Mat3<double>& R,
+                const Vec3<double>& axis) {
+  return {.name = name, .kind = kind, .parent = parent, .child = child, .xyz = xyz, .R = R,
+          .axis = axis};
+}
+
+/// A five-link arm: a pedestal fixed to the base (its inertia is lost to the fixed base),
+/// shoulder and elbow joints, a link on the joint `mount` (of the given kind) in the middle of
+/// the chain, a wrist after it and a tool fixed to the wrist.
+ModelBuilder arm(JointKind mount) {
+  ModelBuilder b;
+  b.add_link(link("base", 0, {}, {}));
+  b.add_link(link("pedestal", 4.0, {0, 0, 0.1}, {0.1, 0.1, 0.05}));
+  b.add_link(link("upper", 2.0, {0.1, 0.02, 0.3}, {0.05, 0.06, 0.01}, rpy(0.1, 0.2, 0.3)));
+  b.add_link(link("fore", 1.5, {0.25, -0.01, 0.02}, {0.01, 0.04, 0.04}));
+  b.add_link(link("camera", 0.7, {0.03, 0.05, -0.02}, {0.002, 0.003, 0.004}, rpy(-0.4, 0.5, 1)));
+  b.add_link(link("wrist", 0.6, {0.02, 0.01, 0.05}, {0.003, 0.003, 0.002}));
+  b.add_link(link("tool", 0.4, {0, 0, 0.08}, {0.001, 0.001, 0.0005}));
+  b.add_joint(joint("fix_pedestal", JointKind::Fixed, "base", "pedestal", {0, 0, 0.2},
+                    rpy(0, 0, 0.7), {1, 0, 0}));
+  b.add_joint(joint("shoulder", JointKind::Revolute, "pedestal", "upper", {0, 0, 0.3},
+                    rpy(0, 0, 0), {0, 0, 1}));
+  b.add_joint(joint("elbow", JointKind::Revolute, "upper", "fore", {0.05, 0.1, 0.6},
+                    rpy(pi / 2, 0, 0.2), {0, 1, 0}));
+  b.add_joint(joint("mount", mount, "fore", "camera", {0.5, 0.03, -0.04}, rpy(0.3, -0.2, 0.9),
+                    {0.36, 0.48, 0.8}));
+  b.add_joint(joint("wrist", JointKind::Revolute, "camera", "wrist", {0.1, -0.05, 0.07},
+                    rpy(-0.6, 0.1, 0.4), {1, 1, 0}));
+  b.add_joint(joint("fix_tool", JointKind::Fixed, "wrist", "tool", {0, 0.02, 0.12},
+                    rpy(0.2, 0.3, -0.1), {1, 0, 0}));
+  return b;
+}
+
+/// World poses of every link straight from the specs: each joint places its child at
+/// (R, xyz) in the parent frame, turned by q about its axis (angle-axis through Eigen).
+struct LinkPose {
+  Matrix3 R;
+  Vector3 p;
+};
+
+std::map<std::string, LinkPose> link_poses(const ModelBuilder& b,
+                                           const std::map<std::string, double>& q) {
+  std::map<std::string, LinkPose> pose{{"base", {Matrix3::Identity(), Vector3::Zero()}}};
+  // the joints are listed parent first
+  for (const JointSpec& j : b.joints()) {
+    const LinkPose& parent = pose.at(j.parent);
+    const auto it = q.find(j.name);
+    const double angle = it == q.end() ? 0.0 : it->second;
+    const Matrix3 R = parent.R * dense(j.R) *
+                      Eigen::AngleAxisd(angle, dense(j.axis).normalized()).toRotationMatrix();
+    pose[j.child] = {R, parent.p + parent.R * dense(j.xyz)};
+  }
+  return pose;
+}
+
+/// Total mass and centre of mass of the links that move (all but base and pedestal).
+std::pair<double, Vector3> mass_and_com_from_specs(const ModelBuilder& b,
+                                                    const std::map<std::string, double>& q) {
+  const auto pose = link_poses(b, q);
+  double m = 0;
+  Vector3 mc = Vector3::Zero();
+  for (const LinkSpec& l : b.links()) {
+    if (l.name == "base" || l.name == "pedestal") continue;
+    m += l.mass;
+    mc += l.mass * (pose.at(l.name).p + pose.at(l.name).R * dense(l.com));
+  }
+  return {m, mc / m};
+}
+
+/// Total mass and centre of mass of a model's bodies, composing the joint transforms.
+std::pair<double, Vector3> mass_and_com(const Model<double>& model, const Vector& q) {
+  std::vector<Matrix3> R(model.nbodies);
+  std::vector<Vector3> p(model.nbodies);
+  double m = 0;
+  Vector3 mc = Vector3::Zero();
+  for (int i = 0; i < model.nbodies; ++i) {
+    const Xform<double> X = joint_transform(model, i, q[model.q_index[i]]);
+    const int parent = model.parent[i];
+    const Matrix3 R_p = parent < 0 ? Matrix3::Identity() : R[parent];
+    R[i] = R_p * dense(X.E).transpose();
+    p[i] = (parent < 0 ? Vector3::Zero() : p[parent]) + R_p * dense(X.r);
+    m += model.I[i].m;
+    mc += model.I[i].m * p[i] + R[i] * dense(model.I[i].h);
+  }
+  return {m, mc / m};
+}
+
+Eigen::MatrixXd mass_matrix(const Model<double>& model, const Vector& q) {
+  Workspace<double> ws(model);
+  std::vector<double> M(model.nv * model.nv);
+  crba<double>(model, ws, std::span(q.data(), q.size()), M);
+  return test::to_eigen(M, model.nv);
+}
+
+int body_index(const Model<double>& model, const std::string& name) {
+  const auto it = std::find(model.body_name.begin(), model.body_name.end(), name);
+  return it == model.body_name.end() ? -1 : static_cast<int>(it - model.body_name.begin());
+}
+
+TEST(ModelBuilder, FixedJointsMergeIntoParentBody) {
+  const Model<double> fixed = arm(JointKind::Fixed).build({0, 0, -9.81});
+  ModelBuilder locked_builder = arm(JointKind::Revolute);
+  locked_builder.lock("mount");
+  const Model<double> locked = locked_builder.build({0, 0, -9.81});
+  const Model<double> free = arm(JointKind::Revolute).build({0, 0, -9.81});
+  ASSERT_EQ(fixed.nv, 3);
+  ASSERT_EQ(locked.nv, 3);
+  ASSERT_EQ(free.nv, 4);
+  EXPECT_EQ(fixed.body_name, (std::vector<std::string>{"upper", "fore", "wrist"}));
+  const int mount = body_index(free, "camera");
+  ASSERT_GE(mount, 0);
+
+  test::Random rng(51);
+  for (int k = 0; k < 20; ++k) {
+    const Vector q = test::to_eigen(rng.vector(3, -pi, pi));
+    // the free model at q_mount = 0, with the mount's coordinate inserted
+    Vector q_free(4);
+    q_free << q.head(mount), 0.0, q.tail(3 - mount);
+
+    // mass and centre of mass: every model against the links placed from their specs
+    const auto [m_spec, c_spec] = mass_and_com_from_specs(
+        arm(JointKind::Fixed), {{"shoulder", q[0]}, {"elbow", q[1]}, {"wrist", q[2]}});
+    for (const auto& [name, model, x] :
+         {std::tuple{"fixed", &fixed, q}, {"locked", &locked, q}, {"free", &free, q_free}}) {
+      const auto [m, c] = mass_and_com(*model, x);
+      EXPECT_NEAR(m, m_spec, 4 * eps * m_spec) << name;
+      EXPECT_LE((c - c_spec).cwiseAbs().maxCoeff(), 64 * eps) << name;
+    }
+
+    // M: locking is merging, bit for bit; and the merged model's M is the free model's at
+    // q_mount = 0 without the mount's row and column
+    const Eigen::MatrixXd M = mass_matrix(fixed, q);
+    EXPECT_EQ(mass_matrix(locked, q), M);
+    const Eigen::MatrixXd M_free = mass_matrix(free, q_free);
+    std::vector<int> keep;
+    for (int i = 0; i < 4; ++i)
+      if (i != mount) keep.push_back(i);
+    EXPECT_LE((M_free(keep, keep) - M).cwiseAbs().maxCoeff(), 64 * eps * M.cwiseAbs().maxCoeff());
+  }
+}
+
+TEST(ModelBuilder, AxisKindsOnlyForExactAxes) {
+  const std::pair<Vec3<double>, JointType> axes[] = {
+      {{1, 0, 0}, JointType::RevoluteX},     {{-1, 0, 0}, JointType::RevoluteX},
+      {{0, 1, 0}, JointType::RevoluteY},     {{0, -1, 0}, JointType::RevoluteY},
+      {{0, 0, 1}, JointType::RevoluteZ},     {{0, 0, -1}, JointType::RevoluteZ},
+      {{0, 0, 2.5}, JointType::RevoluteZ},   {{1e-17, 0, 1}, JointType::Revolute},
+      {{0, 1e-300, -1}, JointType::Revolute}, {{0.6, 0.8, 0}, JointType::Revolute},
+      {{1, 1, 1}, JointType::Revolute},
+  };
+  for (const auto& [axis, type] : axes) {
+    ModelBuilder b;
+    b.add_link(link("base", 0, {}, {}));
+    b.add_link(link("body", 1, {0.1, 0.2, 0.3}, {0.1, 0.1, 0.1}));
+    b.add_joint(joint("j", JointKind::Revolute, "base", "body", {}, rpy(0.1, 0.2, 0.3), axis));
+    const Model<double> model = b.build({0, 0, -9.81});
+    EXPECT_EQ(model.joint_type[0], type) << dense(axis).transpose();
+    const Vec3<double>& k = model.joint_axis[0];
+    EXPECT_NEAR(std::sqrt(dot(k, k)), 1.0, eps);
+    EXPECT_LE((dense(k) - dense(axis).normalized()).cwiseAbs().maxCoeff(), eps);
+  }
+}
+
+/// Every joint's kind matches its axis: RevoluteX/Y/Z exactly on +-x/y/z, Revolute never.
+void expect_axis_kinds(const Model<double>& model, const std::string& name) {
+  for (int i = 0; i < model.nbodies; ++i) {
+    const Vec3<double>& k = model.joint_axis[i];
+    const bool x = k.y == 0 && k.z == 0, y = k.x == 0 && k.z == 0, z = k.x == 0 && k.y == 0;
+    switch (model.joint_type[i]) {
+      case JointType::RevoluteX: EXPECT_TRUE(x && std::abs(k.x) == 1) << name; break;
+      case JointType::RevoluteY: EXPECT_TRUE(y && std::abs(k.y) == 1) << name; break;
+      case JointType::RevoluteZ: EXPECT_TRUE(z && std::abs(k.z) == 1) << name; break;
+      case JointType::Revolute: EXPECT_FALSE(x || y || z) << name; break;
+      case JointType::Prismatic: break;
+    }
+  }
+}
+
+/// Bodies in topological order: parent[i] < i, one coordinate each, in body order.
+void expect_topological(const Model<double>& model, const std::string& name) {
+  ASSERT_EQ(model.parent.size(), std::size_t(model.nbodies)) << name;
+  EXPECT_EQ(model.nq, model.nbodies) << name;
+  EXPECT_EQ(model.nv, model.nbodies) << name;
+  for (int i = 0; i < model.nbodies; ++i) {
+    EXPECT_GE(model.parent[i], -1) << name;
+    EXPECT_LT(model.parent[i], i) << name;
+    EXPECT_EQ(model.q_index[i], i) << name;
+  }
+}
+
+TEST(ModelBuilder, SharedRobotsAndRandomChains) {
+  for (const test::RobotFile& robot : test::robot_files()) {
+    const Model<double> model = gen::load_robot(robot.path).model;
+    expect_topological(model, robot.name);
+    expect_axis_kinds(model, robot.name);
+  }
+  for (int seed = 0; seed < 10; ++seed) {
+    const Model<double> model = test::make_random_chain(12, seed, false);
+    expect_topological(model, "spatial chain");
+    expect_axis_kinds(model, "spatial chain");
+  }
+}
+
+TEST(ModelBuilder, RandomTreesInShuffledOrder) {
+  // Links and joints added in random order, some joints fixed: bodies come out parent first,
+  // and each body's parent is the body of its nearest ancestor link on a moving joint.
+  test::Random rng(52);
+  for (int trial = 0; trial < 50; ++trial) {
+    const int nlinks = 2 + rng.index(20);
+    std::vector<int> parent_link(nlinks, -1);
+    std::vector<bool> fixed(nlinks, false);
+    std::vector<int> order(nlinks);
+    for (int l = 1; l < nlinks; ++l) {
+      parent_link[l] = rng.index(l);
+      fixed[l] = rng.chance(0.3);
+    }
+    for (int l = 0; l < nlinks; ++l) order[l] = l;
+    for (int l = nlinks - 1; l > 0; --l) std::swap(order[l], order[rng.index(l + 1)]);
+    auto name = [](int l) { return "L" + std::to_string(l); };
+    ModelBuilder b;
+    for (const int l : order) b.add_link(link(name(l), 1, {0.1, 0, 0}, {0.1, 0.1, 0.1}));
+    for (const int l : order)
+      if (l > 0)
+        b.add_joint(joint("J" + std::to_string(l), fixed[l] ? JointKind::Fixed : JointKind::Revolute,
+                          name(parent_link[l]), name(l), {0.1, 0.2, 0}, rpy(0, 0, 0), {0, 0, 1}));
+    const Model<double> model = b.build({0, 0, -9.81});
+    expect_topological(model, "trial " + std::to_string(trial));
+    EXPECT_EQ(model.nbodies, std::count(fixed.begin() + 1, fixed.end(), false));
+    for (int i = 0; i < model.nbodies; ++i) {
+      const int l = std::stoi(model.body_name[i].substr(1));
+      EXPECT_EQ(model.joint_name[i], "J" + std::to_string(l));
+      int a = parent_link[l];
+      while (a > 0 && fixed[a]) a = parent_link[a];
+      EXPECT_EQ(model.parent[i], a <= 0 ? -1 : body_index(model, name(a)));
+    }
+  }
+}
+
+/// Runs f, which must throw a ModelError whose message contains `text`.
+template <class F>
+void expect_model_error(F f, const std::string& text) {
+  try {
+    f();
+    ADD_FAILURE() << "no ModelError; expected one saying '" << text << "'";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
+/// Links base, a, b, c and joints from the (parent, child) pairs.
+ModelBuilder tree(const std::vector<std::pair<std::string, std::string>>& joints) {
+  ModelBuilder b;
+  for (const char* name : {"base", "a", "b", "c"}) b.add_link(link(name, 1, {}, {1, 1, 1}));
+  for (const auto& [parent, child] : joints)
+    b.add_joint(joint(parent + "_" + child, JointKind::Revolute, parent, child, {}, rpy(0, 0, 0),
+                      {0, 0, 1}));
+  return b;
+}
+
+TEST(ModelBuilder, Errors) {
+  const Vec3<double> g{0, 0, -9.81};
+  expect_model_error([&] { tree({{"base", "a"}, {"a", "b"}, {"base", "b"}, {"b", "c"}}).build(g); },
+                     "link 'b' has two parent joints, 'a_b' and 'base_b'");
+  expect_model_error([&] { tree({{"a", "b"}, {"b", "c"}, {"c", "a"}, {"a", "base"}}).build(g); },
+                     "two parent joints");
+  expect_model_error([&] { tree({{"base", "a"}, {"b", "c"}, {"c", "b"}}).build(g); },
+                     "not connected to the root link 'base'");
+  expect_model_error([&] { tree({{"base", "a"}, {"a", "b"}}).build(g); },
+                     "more than one root link: 'base', 'c'");
+  expect_model_error([&] { tree({{"base", "a"}, {"a", "ghost"}}).build(g); },
+                     "child link 'ghost' of joint 'a_ghost' is not defined");
+  expect_model_error([&] { tree({{"ghost", "a"}}).build(g); },
+                     "parent link 'ghost' of joint 'ghost_a' is not defined");
+  expect_model_error([&] { tree({{"base", "a"}}).lock("elbow"); },
+                     "cannot lock joint 'elbow': no joint of that name");
+  expect_model_error([&] { tree({}).add_link(link("a", 1, {}, {})); },
+                     "link 'a' is defined twice");
+  expect_model_error([&] { tree({{"base", "a"}}).add_joint(joint("base_a", JointKind::Fixed, "a",
+                                                                 "b", {}, rpy(0, 0, 0), {1, 0, 0})); },
+                     "joint 'base_a' is defined twice");
+  expect_model_error(
+      [&] {
+        ModelBuilder b = tree({{"base", "a"}, {"a", "b"}, {"b", "c"}});
+        b.add_link(link("d", 1, {}, {1, 1, 1}));
+        b.add_joint(joint("zero", JointKind::Revolute, "c", "d", {}, rpy(0, 0, 0), {0, 0, 0}));
+        b.build(g);
+      },
+      "joint 'zero' has a zero or non-finite axis");
+}
+
+}  // namespace
+}  // namespace dyngen

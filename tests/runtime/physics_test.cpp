@@ -118,10 +118,98 @@ TEST_P(Physics, KineticEnergyIsHalfQdTransposeMQd) {
     const double T = 0.5 * qd.dot(Md * qd);
     // each side sums n^2 terms bounded by |qd|^T |M| |qd|
     const double scale = qd.cwiseAbs().dot(Md.cwiseAbs() * qd.cwiseAbs());
-    worst = std::max(worst, std::abs(energy.kinetic(test::to_eigen(s.q), qd) - T) / (n * eps * scale));
+    const double T_bodies = energy.kinetic(test::to_eigen(s.q), qd);
+    ASSERT_TRUE(std::isfinite(T_bodies));
+    worst = std::max(worst, std::abs(T_bodies - T) / (n * eps * scale));
   }
   report("kinetic energy error / (n eps |qd|^T |M| |qd|)", worst);
   EXPECT_LE(worst, 4.0);
+}
+
+// Finite differences below (Pinocchio's choice, STYLE.md B4): central differences with
+// h = 1e-8 and a tolerance of sqrt(h) = 1e-4 relative to the energies' scale. The truncation
+// error is h^2 |d3E/dt3| ~ 1e-16; the rounding of E (about eps |E|), of the stepped state and
+// of the ABA calls, divided by 2h, is about 1e-8 of the scale; so sqrt(h) leaves four orders of
+// magnitude to spare, while a missing or mis-signed term is off by a large fraction of it.
+constexpr double fd_h = 1e-8;
+constexpr double fd_tol = 1e-4;
+
+TEST_P(Physics, GravityTorqueIsPotentialGradient) {
+  // g(q) = RNEA(q, 0, 0) = dV/dq
+  const Model<double> model = GetParam().make();
+  const int n = model.nv;
+  Workspace<double> ws(model);
+  Energy energy(model);
+  test::Random rng(42);
+  const std::vector<double> zero(n, 0.0);
+  std::vector<double> g(n);
+  double worst = 0;
+  for (int k = 0; k < 5; ++k) {
+    const Vector q = test::to_eigen(test::random_state(model, rng).q);
+    rnea<double>(model, ws, std::span(q.data(), n), zero, zero, g);
+    // |V| bounds the rounding of V; |g| the size of the gradient
+    const double scale = std::abs(energy.potential(q)) + test::to_eigen(g).cwiseAbs().maxCoeff();
+    for (int j = 0; j < n; ++j) {
+      const Vector dq = Vector::Unit(n, j) * fd_h;
+      const double dV = (energy.potential(q + dq) - energy.potential(q - dq)) / (2 * fd_h);
+      ASSERT_TRUE(std::isfinite(dV)) << "joint " << j;
+      worst = std::max(worst, std::abs(dV - g[j]) / scale);
+    }
+  }
+  report("|dV/dq - g| / (|V| + |g|)", worst);
+  EXPECT_LE(worst, fd_tol);
+}
+
+TEST_P(Physics, PowerIsRateOfChangeOfEnergy) {
+  // Along a trajectory of ABA under a constant tau and gravity, integrated with RK4:
+  // d/dt (T + V) = tau . qd, with the derivative by central differences from RK4 steps of +-h.
+  const Model<double> model = GetParam().make();
+  const int n = model.nv;
+  Workspace<double> ws(model);
+  Energy energy(model);
+  test::Random rng(43);
+  Vector q = test::to_eigen(rng.vector(n, -3, 3)), qd = test::to_eigen(rng.vector(n, -1, 1));
+  // tau_i = M_ii(q0) times up to 2 rad/s^2: light fingers as well as heavy legs then move by
+  // comparable angles over the trajectory (a torque of a few Nm would spin pr2's fingers at
+  // 1e5 rad/s^2 and RK4 with a 5 ms step would diverge)
+  std::vector<double> M(n * n);
+  crba<double>(model, ws, std::span(q.data(), n), M);
+  const Vector tau =
+      test::to_eigen(M, n).diagonal().cwiseProduct(test::to_eigen(rng.vector(n, -2, 2)));
+
+  auto acceleration = [&](const Vector& x, const Vector& xd) {
+    Vector xdd(n);
+    aba<double>(model, ws, std::span(x.data(), n), std::span(xd.data(), n),
+                std::span(tau.data(), n), std::span(xdd.data(), n));
+    return xdd;
+  };
+  auto rk4 = [&](Vector& x, Vector& xd, double dt) {
+    const Vector k1 = xd, l1 = acceleration(x, xd);
+    const Vector k2 = xd + dt / 2 * l1, l2 = acceleration(x + dt / 2 * k1, k2);
+    const Vector k3 = xd + dt / 2 * l2, l3 = acceleration(x + dt / 2 * k2, k3);
+    const Vector k4 = xd + dt * l3, l4 = acceleration(x + dt * k3, k4);
+    x += dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    xd += dt / 6 * (l1 + 2 * l2 + 2 * l3 + l4);
+  };
+  auto total_energy = [&](const Vector& x, const Vector& xd) {
+    return energy.kinetic(x, xd) + energy.potential(x);
+  };
+
+  double worst = 0;
+  for (int step = 0; step < 20; ++step) {
+    Vector q_plus = q, qd_plus = qd, q_minus = q, qd_minus = qd;
+    rk4(q_plus, qd_plus, fd_h);
+    rk4(q_minus, qd_minus, -fd_h);
+    const double dE = (total_energy(q_plus, qd_plus) - total_energy(q_minus, qd_minus)) / (2 * fd_h);
+    const double power = tau.dot(qd);
+    const double scale = std::abs(energy.kinetic(q, qd)) + std::abs(energy.potential(q)) +
+                         tau.cwiseProduct(qd).cwiseAbs().sum();
+    ASSERT_TRUE(std::isfinite(dE)) << "step " << step;
+    worst = std::max(worst, std::abs(dE - power) / scale);
+    rk4(q, qd, 5e-3);
+  }
+  report("|dE/dt - tau . qd| / (|T| + |V| + sum |tau_i qd_i|)", worst);
+  EXPECT_LE(worst, fd_tol);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, Physics, ::testing::ValuesIn(cases()),
