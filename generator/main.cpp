@@ -1,6 +1,7 @@
 // dyngen ROBOT -o DIR: reads a robot, traces the runtime's algorithms for it and writes the
 // specialised code, the model tables, the bit-for-bit check and a CMakeLists.txt.
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -51,6 +52,19 @@ std::vector<Algorithm> parse_algorithms(const std::string& text) {
   // always in the same order, so the output does not depend on how the list was written
   std::sort(out.begin(), out.end());
   return out;
+}
+
+/// Where find_package(dyngen) should look: beside the executable in a build tree, or
+/// <prefix>/lib/cmake/dyngen for an installed one.
+std::string package_dir() {
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return "<dyngen build directory>";
+  const std::filesystem::path bin = exe.parent_path();
+  if (std::filesystem::exists(bin / "dyngenConfig.cmake")) return bin.string();
+  const std::filesystem::path installed = bin.parent_path() / "lib" / "cmake" / "dyngen";
+  if (std::filesystem::exists(installed / "dyngenConfig.cmake")) return installed.string();
+  return "<dyngen build directory>";
 }
 
 }  // namespace
@@ -127,7 +141,7 @@ int main(int argc, char** argv) {
       fmt::print("\nbuild and check it against the runtime:\n"
                  "  cmake -S {0} -B {0}/build -Ddyngen_DIR={1} && cmake --build {0}/build && "
                  "ctest --test-dir {0}/build\n",
-                 output, DYNGEN_PACKAGE_DIR);
+                 output, package_dir());
     }
   } catch (const InputError& e) {
     fmt::print(stderr, "dyngen: error: {}\n", e.what());
