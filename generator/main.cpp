@@ -93,8 +93,6 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "print errors and warnings only");
   app.set_version_flag("--version", std::string("dyngen ") + version);
   CLI11_PARSE(app, argc, argv);
-  // write_files renames a staged directory onto the output path, which fails for "gen/"
-  while (output.size() > 1 && output.back() == '/') output.pop_back();
 
   try {
     LoadOptions load;

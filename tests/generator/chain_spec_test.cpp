@@ -171,13 +171,14 @@ TEST_F(ChainSpec, NameAndBase) {
 }
 
 TEST_F(ChainSpec, MassComAndFullInertia) {
-  const Model<double> m = load("links:\n"
-                               "  - mass: 2\n"
-                               "    com: [0, 0, 0]\n"
-                               "    inertia: {ixx: 1, iyy: 2, izz: 3, ixy: 0.1, ixz: 0.2, iyz: 0.3}\n"
-                               "  - mass: 4\n"
-                               "    com: [0.5, -0.25, 2]\n")
-                              .model;
+  const Model<double> m =
+      load("links:\n"
+           "  - mass: 2\n"
+           "    com: [0, 0, 0]\n"
+           "    inertia: {ixx: 1, iyy: 2, izz: 3, ixy: 0.1, ixz: 0.2, iyz: 0.3}\n"
+           "  - mass: 4\n"
+           "    com: [0.5, -0.25, 2]\n")
+          .model;
   EXPECT_EQ(m.I[0].m, 2);
   EXPECT_EQ(m.I[0].I.xx, 1);
   EXPECT_EQ(m.I[0].I.yy, 2);
@@ -242,11 +243,12 @@ TEST_F(ChainSpec, AxesAreNormalisedAndAxisAlignedOnesGetTheirKinds) {
 
 TEST_F(ChainSpec, JointNameXyzAndRpy) {
   const double roll = 0.1, pitch = -0.4, yaw = 1.2;
-  const Model<double> m = load("links:\n"
-                               "  - {mass: 1, length: 5}\n"
-                               "  - mass: 1\n"
-                               "    joint: {name: elbow, xyz: [0.1, 0.2, 0.3], rpy: [0.1, -0.4, 1.2]}\n")
-                              .model;
+  const Model<double> m =
+      load("links:\n"
+           "  - {mass: 1, length: 5}\n"
+           "  - mass: 1\n"
+           "    joint: {name: elbow, xyz: [0.1, 0.2, 0.3], rpy: [0.1, -0.4, 1.2]}\n")
+          .model;
   EXPECT_EQ(m.joint_name[1], "elbow");
   expect_vec(m.X_tree[1].r, 0.1, 0.2, 0.3, "xyz replaces the previous link's length");
   // E maps parent to child coordinates: the transpose of R = Rz(yaw) Ry(pitch) Rx(roll)

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -74,6 +76,31 @@ TEST_F(WriteFiles, CreatesANewDirectoryWithExactlyTheFilesAndNoLeftovers) {
   write_files((dir / "gen").string(), files);
   EXPECT_EQ(entries_of(dir), std::vector<std::string>{"gen"}) << "a staging directory is left";
   EXPECT_EQ(snapshot(dir / "gen"), written);
+}
+
+TEST_F(WriteFiles, ANewDirectoryAppearsWhole) {
+  // an observer polling while the files are written sees no directory or all of it
+  const std::size_t count = 300;
+  std::vector<GeneratedFile> many;
+  for (std::size_t k = 0; k < count; ++k) many.push_back({std::to_string(k) + ".cpp", "x"});
+  const fs::path gen = dir / "gen";
+  std::atomic<bool> done = false;
+  std::thread writer([&] {
+    write_files(gen.string(), many);
+    done = true;
+  });
+  std::size_t partial = 0;
+  while (!done) {
+    std::error_code error;
+    std::size_t seen = 0;
+    for (auto it = fs::directory_iterator(gen, error); !error && it != fs::directory_iterator();
+         it.increment(error))
+      ++seen;
+    if (!error && seen != count) ++partial;
+  }
+  writer.join();
+  EXPECT_EQ(partial, 0u) << "times the directory was seen partly written";
+  EXPECT_EQ(entries_of(gen).size(), count);
 }
 
 TEST_F(WriteFiles, CreatesMissingParentDirectories) {
