@@ -32,7 +32,12 @@ LinkSpec link(const std::string& name, double mass, const Vec3<double>& com,
 JointSpec joint(const std::string& name, JointKind kind, const std::string& parent,
                 const std::string& child, const Vec3<double>& xyz, const Mat3<double>& R,
                 const Vec3<double>& axis) {
-  return {.name = name, .kind = kind, .parent = parent, .child = child, .xyz = xyz, .R = R,
+  return {.name = name,
+          .kind = kind,
+          .parent = parent,
+          .child = child,
+          .xyz = xyz,
+          .R = R,
           .axis = axis};
 }
 
@@ -50,8 +55,8 @@ ModelBuilder arm(JointKind mount) {
   b.add_link(link("tool", 0.4, {0, 0, 0.08}, {0.001, 0.001, 0.0005}));
   b.add_joint(joint("fix_pedestal", JointKind::Fixed, "base", "pedestal", {0, 0, 0.2},
                     rpy(0, 0, 0.7), {1, 0, 0}));
-  b.add_joint(joint("shoulder", JointKind::Revolute, "pedestal", "upper", {0, 0, 0.3},
-                    rpy(0, 0, 0), {0, 0, 1}));
+  b.add_joint(joint("shoulder", JointKind::Revolute, "pedestal", "upper", {0, 0, 0.3}, rpy(0, 0, 0),
+                    {0, 0, 1}));
   b.add_joint(joint("elbow", JointKind::Revolute, "upper", "fore", {0.05, 0.1, 0.6},
                     rpy(pi / 2, 0, 0.2), {0, 1, 0}));
   b.add_joint(joint("mount", mount, "fore", "camera", {0.5, 0.03, -0.04}, rpy(0.3, -0.2, 0.9),
@@ -87,7 +92,7 @@ std::map<std::string, LinkPose> link_poses(const ModelBuilder& b,
 
 /// Total mass and centre of mass of the links that move (all but base and pedestal).
 std::pair<double, Vector3> mass_and_com_from_specs(const ModelBuilder& b,
-                                                    const std::map<std::string, double>& q) {
+                                                   const std::map<std::string, double>& q) {
   const auto pose = link_poses(b, q);
   double m = 0;
   Vector3 mc = Vector3::Zero();
@@ -127,6 +132,49 @@ Eigen::MatrixXd mass_matrix(const Model<double>& model, const Vector& q) {
 int body_index(const Model<double>& model, const std::string& name) {
   const auto it = std::find(model.body_name.begin(), model.body_name.end(), name);
   return it == model.body_name.end() ? -1 : static_cast<int>(it - model.body_name.begin());
+}
+
+TEST(ModelBuilder, RotationsMatchTheirDefinitions) {
+  // rpy: R = Rz(yaw) Ry(pitch) Rx(roll) about fixed axes (URDF); quaternion (x, y, z, w)
+  test::Random rng(53);
+  for (int k = 0; k < 100; ++k) {
+    const double r = rng.uniform(-pi, pi), p = rng.uniform(-pi, pi), y = rng.uniform(-pi, pi);
+    const Matrix3 R =
+        (Eigen::AngleAxisd(y, Vector3::UnitZ()) * Eigen::AngleAxisd(p, Vector3::UnitY()) *
+         Eigen::AngleAxisd(r, Vector3::UnitX()))
+            .toRotationMatrix();
+    EXPECT_LE((dense(rotation_from_rpy(r, p, y)) - R).cwiseAbs().maxCoeff(), 8 * eps);
+    const Eigen::Quaterniond quat = Eigen::Quaterniond(rng.uniform(-1, 1), rng.uniform(-1, 1),
+                                                       rng.uniform(-1, 1), rng.uniform(-1, 1))
+                                        .normalized();
+    EXPECT_LE((dense(rotation_from_quaternion(quat.x(), quat.y(), quat.z(), quat.w())) -
+               quat.toRotationMatrix())
+                  .cwiseAbs()
+                  .maxCoeff(),
+              8 * eps);
+  }
+}
+
+TEST(ModelBuilder, LinkInertiaIsTheInertiaAtTheCentreOfMassTransformed) {
+  // I_O = X^T diag(I_C, m 1) X, with X = rot(R^T) xlt(c) from the link frame O to the centre
+  // of mass frame C whose axes are R's columns (RBDA eq. 2.66, dense)
+  test::Random rng(54);
+  for (int k = 0; k < 100; ++k) {
+    const LinkSpec l =
+        link("l", rng.uniform(0.1, 5), {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)},
+             {rng.uniform(0.5, 1), rng.uniform(0.5, 1), rng.uniform(0.5, 1), rng.uniform(-0.2, 0.2),
+              rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2)},
+             rpy(rng.uniform(-pi, pi), rng.uniform(-pi, pi), rng.uniform(-pi, pi)));
+    test::Matrix6<double> I_C = test::Matrix6<double>::Zero();
+    I_C.topLeftCorner<3, 3>() = dense(l.I_com);
+    I_C.bottomRightCorner<3, 3>() = l.mass * Matrix3::Identity();
+    const Mat3<double>& R = l.R;
+    const test::Matrix6<double> X =
+        dense(Xform<double>{{R.xx, R.yx, R.zx, R.xy, R.yy, R.zy, R.xz, R.yz, R.zz}, l.com});
+    const test::Matrix6<double> I_O = X.transpose() * I_C * X;
+    EXPECT_LE((dense(link_inertia(l)) - I_O).cwiseAbs().maxCoeff(),
+              16 * eps * I_O.cwiseAbs().maxCoeff());
+  }
 }
 
 TEST(ModelBuilder, FixedJointsMergeIntoParentBody) {
@@ -173,10 +221,10 @@ TEST(ModelBuilder, FixedJointsMergeIntoParentBody) {
 
 TEST(ModelBuilder, AxisKindsOnlyForExactAxes) {
   const std::pair<Vec3<double>, JointType> axes[] = {
-      {{1, 0, 0}, JointType::RevoluteX},     {{-1, 0, 0}, JointType::RevoluteX},
-      {{0, 1, 0}, JointType::RevoluteY},     {{0, -1, 0}, JointType::RevoluteY},
-      {{0, 0, 1}, JointType::RevoluteZ},     {{0, 0, -1}, JointType::RevoluteZ},
-      {{0, 0, 2.5}, JointType::RevoluteZ},   {{1e-17, 0, 1}, JointType::Revolute},
+      {{1, 0, 0}, JointType::RevoluteX},      {{-1, 0, 0}, JointType::RevoluteX},
+      {{0, 1, 0}, JointType::RevoluteY},      {{0, -1, 0}, JointType::RevoluteY},
+      {{0, 0, 1}, JointType::RevoluteZ},      {{0, 0, -1}, JointType::RevoluteZ},
+      {{0, 0, 2.5}, JointType::RevoluteZ},    {{1e-17, 0, 1}, JointType::Revolute},
       {{0, 1e-300, -1}, JointType::Revolute}, {{0.6, 0.8, 0}, JointType::Revolute},
       {{1, 1, 1}, JointType::Revolute},
   };
@@ -253,8 +301,9 @@ TEST(ModelBuilder, RandomTreesInShuffledOrder) {
     for (const int l : order) b.add_link(link(name(l), 1, {0.1, 0, 0}, {0.1, 0.1, 0.1}));
     for (const int l : order)
       if (l > 0)
-        b.add_joint(joint("J" + std::to_string(l), fixed[l] ? JointKind::Fixed : JointKind::Revolute,
-                          name(parent_link[l]), name(l), {0.1, 0.2, 0}, rpy(0, 0, 0), {0, 0, 1}));
+        b.add_joint(joint("J" + std::to_string(l),
+                          fixed[l] ? JointKind::Fixed : JointKind::Revolute, name(parent_link[l]),
+                          name(l), {0.1, 0.2, 0}, rpy(0, 0, 0), {0, 0, 1}));
     const Model<double> model = b.build({0, 0, -9.81});
     expect_topological(model, "trial " + std::to_string(trial));
     EXPECT_EQ(model.nbodies, std::count(fixed.begin() + 1, fixed.end(), false));
@@ -275,7 +324,8 @@ void expect_model_error(F f, const std::string& text) {
     f();
     ADD_FAILURE() << "no ModelError; expected one saying '" << text << "'";
   } catch (const ModelError& e) {
-    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    EXPECT_TRUE(std::string(e.what()).find(text) != std::string::npos)
+        << "message '" << e.what() << "' does not say '" << text << "'";
   }
 }
 
@@ -291,25 +341,50 @@ ModelBuilder tree(const std::vector<std::pair<std::string, std::string>>& joints
 
 TEST(ModelBuilder, Errors) {
   const Vec3<double> g{0, 0, -9.81};
-  expect_model_error([&] { tree({{"base", "a"}, {"a", "b"}, {"base", "b"}, {"b", "c"}}).build(g); },
-                     "link 'b' has two parent joints, 'a_b' and 'base_b'");
-  expect_model_error([&] { tree({{"a", "b"}, {"b", "c"}, {"c", "a"}, {"a", "base"}}).build(g); },
-                     "two parent joints");
-  expect_model_error([&] { tree({{"base", "a"}, {"b", "c"}, {"c", "b"}}).build(g); },
-                     "not connected to the root link 'base'");
-  expect_model_error([&] { tree({{"base", "a"}, {"a", "b"}}).build(g); },
-                     "more than one root link: 'base', 'c'");
-  expect_model_error([&] { tree({{"base", "a"}, {"a", "ghost"}}).build(g); },
-                     "child link 'ghost' of joint 'a_ghost' is not defined");
-  expect_model_error([&] { tree({{"ghost", "a"}}).build(g); },
-                     "parent link 'ghost' of joint 'ghost_a' is not defined");
-  expect_model_error([&] { tree({{"base", "a"}}).lock("elbow"); },
-                     "cannot lock joint 'elbow': no joint of that name");
-  expect_model_error([&] { tree({}).add_link(link("a", 1, {}, {})); },
-                     "link 'a' is defined twice");
-  expect_model_error([&] { tree({{"base", "a"}}).add_joint(joint("base_a", JointKind::Fixed, "a",
-                                                                 "b", {}, rpy(0, 0, 0), {1, 0, 0})); },
-                     "joint 'base_a' is defined twice");
+  expect_model_error(
+      [&] {
+        tree({{"base", "a"}, {"a", "b"}, {"base", "b"}, {"b", "c"}}).build(g);
+      },
+      "link 'b' has two parent joints, 'a_b' and 'base_b'");
+  // a loop through every link leaves no root
+  expect_model_error(
+      [&] {
+        tree({{"a", "b"}, {"b", "c"}, {"c", "a"}, {"a", "base"}}).build(g);
+      },
+      "no root link: every link has a parent (the tree has a loop)");
+  // a loop beside the tree is not reached from the root
+  expect_model_error(
+      [&] {
+        tree({{"base", "a"}, {"b", "c"}, {"c", "b"}}).build(g);
+      },
+      "not connected to the root link 'base'");
+  expect_model_error(
+      [&] {
+        tree({{"base", "a"}, {"a", "b"}}).build(g);
+      },
+      "more than one root link: 'base', 'c'");
+  expect_model_error(
+      [&] {
+        tree({{"base", "a"}, {"a", "ghost"}}).build(g);
+      },
+      "child link 'ghost' of joint 'a_ghost' is not defined");
+  expect_model_error(
+      [&] {
+        tree({{"ghost", "a"}}).build(g);
+      },
+      "parent link 'ghost' of joint 'ghost_a' is not defined");
+  expect_model_error(
+      [&] {
+        tree({{"base", "a"}}).lock("elbow");
+      },
+      "cannot lock joint 'elbow': no joint of that name");
+  expect_model_error([&] { tree({}).add_link(link("a", 1, {}, {})); }, "link 'a' is defined twice");
+  expect_model_error(
+      [&] {
+        tree({{"base", "a"}})
+            .add_joint(joint("base_a", JointKind::Fixed, "a", "b", {}, rpy(0, 0, 0), {1, 0, 0}));
+      },
+      "joint 'base_a' is defined twice");
   expect_model_error(
       [&] {
         ModelBuilder b = tree({{"base", "a"}, {"a", "b"}, {"b", "c"}});

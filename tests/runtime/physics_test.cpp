@@ -31,8 +31,7 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 class Energy {
  public:
   explicit Energy(const Model<double>& model)
-      : model_(model), R_(model.nbodies), p_(model.nbodies), w_(model.nbodies),
-        v_(model.nbodies) {}
+      : model_(model), R_(model.nbodies), p_(model.nbodies), w_(model.nbodies), v_(model.nbodies) {}
 
   /// Sum over bodies of 1/2 v_i^T I_i v_i, written with (m, h, I) in body coordinates:
   /// 1/2 (w . I w + 2 v . (w x h) + m v . v).
@@ -89,7 +88,8 @@ std::vector<Case> cases() {
   std::vector<Case> all;
   for (const test::RobotFile& robot : test::robot_files())
     all.push_back({robot.name, [=] { return test::load_for_aba(robot); }});
-  all.push_back({"planar5", [] { return gen::load_robot(test::model_path("planar5.yaml")).model; }});
+  all.push_back(
+      {"planar5", [] { return gen::load_robot(test::model_path("planar5.yaml")).model; }});
   all.push_back({"planar_chain_12", [] { return test::make_random_chain(12, 31, true); }});
   all.push_back({"spatial_chain_12", [] { return test::make_random_chain(12, 32, false); }});
   return all;
@@ -119,7 +119,7 @@ TEST_P(Physics, KineticEnergyIsHalfQdTransposeMQd) {
     // each side sums n^2 terms bounded by |qd|^T |M| |qd|
     const double scale = qd.cwiseAbs().dot(Md.cwiseAbs() * qd.cwiseAbs());
     const double T_bodies = energy.kinetic(test::to_eigen(s.q), qd);
-    ASSERT_TRUE(std::isfinite(T_bodies));
+    ASSERT_TRUE(std::isfinite(T) && std::isfinite(T_bodies));
     worst = std::max(worst, std::abs(T_bodies - T) / (n * eps * scale));
   }
   report("kinetic energy error / (n eps |qd|^T |M| |qd|)", worst);
@@ -147,6 +147,7 @@ TEST_P(Physics, GravityTorqueIsPotentialGradient) {
   for (int k = 0; k < 5; ++k) {
     const Vector q = test::to_eigen(test::random_state(model, rng).q);
     rnea<double>(model, ws, std::span(q.data(), n), zero, zero, g);
+    ASSERT_TRUE(test::to_eigen(g).allFinite());
     // |V| bounds the rounding of V; |g| the size of the gradient
     const double scale = std::abs(energy.potential(q)) + test::to_eigen(g).cwiseAbs().maxCoeff();
     for (int j = 0; j < n; ++j) {
@@ -200,11 +201,12 @@ TEST_P(Physics, PowerIsRateOfChangeOfEnergy) {
     Vector q_plus = q, qd_plus = qd, q_minus = q, qd_minus = qd;
     rk4(q_plus, qd_plus, fd_h);
     rk4(q_minus, qd_minus, -fd_h);
-    const double dE = (total_energy(q_plus, qd_plus) - total_energy(q_minus, qd_minus)) / (2 * fd_h);
+    const double dE =
+        (total_energy(q_plus, qd_plus) - total_energy(q_minus, qd_minus)) / (2 * fd_h);
     const double power = tau.dot(qd);
     const double scale = std::abs(energy.kinetic(q, qd)) + std::abs(energy.potential(q)) +
                          tau.cwiseProduct(qd).cwiseAbs().sum();
-    ASSERT_TRUE(std::isfinite(dE)) << "step " << step;
+    ASSERT_TRUE(std::isfinite(dE) && std::isfinite(power)) << "step " << step;
     worst = std::max(worst, std::abs(dE - power) / scale);
     rk4(q, qd, 5e-3);
   }
@@ -213,7 +215,9 @@ TEST_P(Physics, PowerIsRateOfChangeOfEnergy) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, Physics, ::testing::ValuesIn(cases()),
-                         [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return info.param.name;
+                         });
 
 }  // namespace
 }  // namespace dyngen

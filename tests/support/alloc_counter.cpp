@@ -43,9 +43,7 @@ constexpr std::size_t plain = alignof(std::max_align_t);
 
 }  // namespace
 
-std::size_t dyngen::test::allocation_count() {
-  return allocations.load(std::memory_order_relaxed);
-}
+std::size_t dyngen::test::allocation_count() { return allocations.load(std::memory_order_relaxed); }
 
 void* operator new(std::size_t size) { return allocate(size, plain); }
 void* operator new[](std::size_t size) { return allocate(size, plain); }
@@ -79,6 +77,4 @@ void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::f
 void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }

@@ -1,3 +1,4 @@
+// Random chains, random states and the shared robot files (see test_support.hpp).
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -74,8 +75,8 @@ Model<double> make_random_chain(int n, std::uint64_t seed, bool planar) {
       if (rng.chance(0.5)) fraction = 1 - fraction;
       link.com = {fraction * length, rng.uniform(-0.05, 0.05), 0};
       link.R = rotation_from_rpy(0, 0, rng.uniform(-pi, pi));
-      link.I_com = box_inertia(link.mass, {length / 2, rng.uniform(0.02, 0.1),
-                                           rng.uniform(0.02, 0.1)});
+      link.I_com =
+          box_inertia(link.mass, {length / 2, rng.uniform(0.02, 0.1), rng.uniform(0.02, 0.1)});
       joint.xyz = {parent_length, 0, 0};
       if (rng.chance(0.25)) {
         joint.kind = JointKind::Prismatic;

@@ -3,13 +3,12 @@
 // ModelBuilder, random states, the shared robot files, and a heap-allocation counter.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "dyngen/model.hpp"
 #include "robot.hpp"
@@ -29,7 +28,7 @@ class Random {
   /// Uniform in [0, 1): the top 53 bits scaled by 2^-53, so every value is exact.
   double uniform() { return static_cast<double>(bits() >> 11) * 0x1.0p-53; }
 
-  /// Uniform in [lo, hi).
+  /// Uniform between lo and hi (hi itself only through rounding).
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
 
   /// Uniform integer in [0, n), n > 0 (the modulo bias is below 2^-40 for small n).
@@ -38,14 +37,15 @@ class Random {
   /// True with probability p.
   bool chance(double p) { return uniform() < p; }
 
-  /// n values uniform in [lo, hi).
+  /// n values uniform between lo and hi.
   std::vector<double> vector(int n, double lo, double hi);
 
  private:
   std::mt19937_64 engine_;
 };
 
-/// A random serial chain of n links, built through dyngen::ModelBuilder with fixed seed.
+/// A random serial chain of n links built through dyngen::ModelBuilder, the same for the same
+/// seed.
 ///
 /// planar: joints about +z or -z (links along x, each joint at the end of the previous link),
 /// about one in four prismatic along an in-plane axis, gravity (0, -9.81, 0), centres of mass
@@ -62,8 +62,8 @@ struct State {
   std::vector<double> q, qd, qdd, tau;
 };
 
-/// q in [-pi, pi), qd and qdd in [-2, 2), tau in [-5, 5) (prismatic joints get the same
-/// ranges in metres).
+/// q in [-pi, pi], qd and qdd in [-2, 2], tau in [-5, 5] (the same numbers in metres for
+/// prismatic joints).
 State random_state(const Model<double>& model, Random& rng);
 
 /// The same values in another scalar type.
