@@ -86,12 +86,13 @@ std::vector<int> joints_with_massless_subtree(const Model<double>& model) {
 std::vector<int> joints_moving_no_mass(const Model<double>& model) {
   const int n = model.nv;
   Workspace<double> ws(model);
+  // angles from raw mt19937_64 bits: the same samples on every standard library
   std::mt19937_64 rng(20261121);
-  std::uniform_real_distribution<double> angle(-3.14159, 3.14159);
+  auto angle = [&rng] { return -3.14159 + 6.28318 * static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   std::vector<double> q(n), v(n, 0.0), tau(n, 0.0), qdd(n), M(n * n);
   std::vector<bool> flagged(n, false);
   for (int sample = 0; sample < 16; ++sample) {
-    for (double& x : q) x = sample == 0 ? 0.0 : angle(rng);
+    for (double& x : q) x = sample == 0 ? 0.0 : angle();
     crba<double>(model, ws, q, M);
     aba<double>(model, ws, q, v, tau, qdd);
     for (int i = 0; i < model.nbodies; ++i) {

@@ -393,6 +393,13 @@ TEST(ModelBuilder, Errors) {
         b.build(g);
       },
       "joint 'zero' has a zero or non-finite axis");
+  // an all-zero or mirrored origin "rotation" would silently build a wrong model
+  for (const Mat3<double>& R : {Mat3<double>{}, Mat3<double>{-1, 0, 0, 0, 1, 0, 0, 0, 1}})
+    expect_model_error(
+        [&] {
+          tree({}).add_joint(joint("bent", JointKind::Revolute, "base", "a", {}, R, {0, 0, 1}));
+        },
+        "joint 'bent': the origin rotation is not a rotation matrix");
 }
 
 }  // namespace

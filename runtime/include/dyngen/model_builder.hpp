@@ -81,6 +81,8 @@ class ModelBuilder {
   }
 
   void add_joint(const JointSpec& joint) {
+    if (!is_rotation(joint.R))
+      throw ModelError("joint '" + joint.name + "': the origin rotation is not a rotation matrix");
     for (const JointSpec& j : joints_)
       if (j.name == joint.name) throw ModelError("joint '" + joint.name + "' is defined twice");
     joints_.push_back(joint);
@@ -164,6 +166,16 @@ class ModelBuilder {
       }
     }
     return visited;
+  }
+
+  /// Orthonormal with determinant +1, to 1e-9 (URDF rotations come from rpy or quaternions).
+  static bool is_rotation(const Mat3<double>& R) {
+    const Mat3<double> P = mul(transpose(R), R);
+    const double off = std::abs(P.xy) + std::abs(P.xz) + std::abs(P.yz) + std::abs(P.yx) +
+                       std::abs(P.zx) + std::abs(P.zy);
+    const double diag = std::abs(P.xx - 1) + std::abs(P.yy - 1) + std::abs(P.zz - 1);
+    const Vec3<double> c0{R.xx, R.yx, R.zx}, c1{R.xy, R.yy, R.zy}, c2{R.xz, R.yz, R.zz};
+    return off + diag < 1e-9 && dot(cross(c0, c1), c2) > 0;
   }
 
   static Xform<double> identity() { return {{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}}; }
