@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include "files.hpp"
 #include "generate.hpp"
 #include "robot.hpp"
 
@@ -24,28 +25,14 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace dyngen::gen;
+using dyngen::test::read;
+using dyngen::test::entries_of;
+using dyngen::test::snapshot;
 
 const std::string bad = DYNGEN_TEST_BAD;
 const std::string models = DYNGEN_TEST_MODELS;
 
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// A fresh directory per test, removed afterwards; ctest runs each test in its own process.
-class Scratch : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("dyngen-bad-input-" + std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  fs::path dir;
-};
+using Scratch = dyngen::test::ScratchTest;
 
 struct CliResult {
   int status;  // exit status, -1 if dyngen did not exit normally (a crash)
@@ -69,21 +56,6 @@ CliResult run_dyngen(const std::vector<std::string>& args, const fs::path& scrat
   fs::remove(out);
   fs::remove(err);
   return r;
-}
-
-/// Every entry under dir with its contents (directories as "<dir>").
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> entries;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    entries[fs::relative(e.path(), dir).string()] =
-        e.is_directory() ? std::string("<dir>") : read(e.path());
-  return entries;
-}
-
-std::vector<std::string> entries_of(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  return names;
 }
 
 /// The options of the command line that the library takes too.

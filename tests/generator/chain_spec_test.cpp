@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "files.hpp"
 #include "generate.hpp"
 #include "robot.hpp"
 
@@ -22,26 +23,13 @@ namespace {
 namespace fs = std::filesystem;
 using namespace dyngen;
 using namespace dyngen::gen;
+using dyngen::test::read;
 
 const std::string models = DYNGEN_TEST_MODELS;
 
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// Inline specs are written to a scratch directory, one per test process.
-class ChainSpec : public ::testing::Test {
+class ChainSpec : public dyngen::test::ScratchTest {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("dyngen-chain-spec-" + std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-
   std::string write(const std::string& yaml) {
     const fs::path path = dir / ("spec" + std::to_string(files++) + ".yaml");
     std::ofstream(path) << yaml;
@@ -63,7 +51,6 @@ class ChainSpec : public ::testing::Test {
     return "(no InputError)";
   }
 
-  fs::path dir;
   int files = 0;
 };
 

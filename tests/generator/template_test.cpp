@@ -12,21 +12,16 @@
 
 #include <gtest/gtest.h>
 
+#include "files.hpp"
 #include "template.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace dyngen::gen;
+using dyngen::test::read;
 
 const fs::path template_dir = fs::path(DYNGEN_SOURCE_DIR) / "templates";
-
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::set<std::string> template_names() {
   std::set<std::string> names;

@@ -18,39 +18,20 @@
 
 #include <gtest/gtest.h>
 
+#include "files.hpp"
 #include "generate.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace dyngen::gen;
-
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using dyngen::test::read;
+using dyngen::test::entries_of;
+using dyngen::test::snapshot;
 
 void write(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
   std::ofstream(path, std::ios::binary) << text;
-}
-
-/// Every entry under dir with its contents (directories as "<dir>").
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> entries;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    entries[fs::relative(e.path(), dir).string()] =
-        e.is_directory() ? std::string("<dir>") : read(e.path());
-  return entries;
-}
-
-std::vector<std::string> entries_of(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 const std::vector<GeneratedFile> files = {{"robot_dynamics.hpp", "// header\n"},
@@ -61,16 +42,7 @@ const std::map<std::string, std::string> written = {{"robot_dynamics.hpp", "// h
                                                     {"robot_dynamics.cpp", "// source\n"},
                                                     {"CMakeLists.txt", "project(robot)\n"}};
 
-class WriteFiles : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("dyngen-write-files-" + std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  fs::path dir;
-};
+using WriteFiles = dyngen::test::ScratchTest;
 
 TEST_F(WriteFiles, CreatesANewDirectoryWithExactlyTheFilesAndNoLeftovers) {
   write_files((dir / "gen").string(), files);
