@@ -12,6 +12,9 @@ packages=(
   libcli11-dev             # command line
   libssl-dev               # sha256 of the input in the banner
   libgtest-dev             # tests and generated check harnesses
+  nlohmann-json3-dev       # dyngen eval: JSON states in, results out
+  libmujoco-dev            # peer comparison (tests/peers/mujoco)
+  liborocos-kdl-dev libkdl-parser-dev  # peer comparison (tests/peers/kdl)
 )
 
 missing=()
