@@ -115,8 +115,18 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
 
   const std::string banner = banner_text(robot, options, result.counts);
   std::string joint_names;
+  const std::vector<std::string> names = velocity_names(model);
+  for (std::size_t k = 0; k < names.size(); ++k)
+    joint_names += fmt::format("    \"{}\",{}", names[k], k + 1 < names.size() ? "\n" : "");
+  std::string free_joints;
   for (int i = 0; i < model.nbodies; ++i)
-    joint_names += fmt::format("    \"{}\",{}", model.joint_name[i], i + 1 < model.nbodies ? "\n" : "");
+    if (model.joint_type[i] == JointType::Free)
+      free_joints += fmt::format(
+          "\n///               free joint '{}': q[{}..{}] = position, then unit quaternion w, x, y, "
+          "z;\n///               v[{}..{}] = linear, then angular velocity, both in the child "
+          "body's\n///               frame (tau alike: force, then moment)",
+          model.joint_name[i], model.q_index[i], model.q_index[i] + 6, model.v_index[i],
+          model.v_index[i] + 5);
   const Vec3<double>& g = model.gravity;
   const std::string gravity = fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z));
 
@@ -130,6 +140,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                                 {"nq", std::to_string(model.nq)},
                                 {"nv", std::to_string(model.nv)},
                                 {"joint_names", joint_names},
+                                {"free_joints", free_joints},
                                 {"declarations", declarations}})});
   result.files.push_back({ns + "_dynamics.cpp", fill("dynamics.cpp.in", {{"banner", commented(banner, "//")},
                                                                         {"name", ns},

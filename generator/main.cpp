@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "eval.hpp"
 #include "generate.hpp"
 
 using namespace dyngen;
@@ -67,39 +69,103 @@ std::string package_dir() {
   return "<dyngen build directory>";
 }
 
+/// The options that choose the model, shared by generation and eval.
+struct ModelFlags {
+  std::string gravity;
+  std::vector<std::string> locks;
+  bool no_gravity = false, lock_massless = false, floating_base = false, mimic_independent = false;
+
+  void add_to(CLI::App& app) {
+    auto* gravity_opt = app.add_option("--gravity", gravity,
+                                       "gravity x,y,z in m/s^2, base coordinates (default: the "
+                                       "chain spec's, else 0,0,-9.81)");
+    app.add_flag("--no-gravity", no_gravity, "gravity 0,0,0")->excludes(gravity_opt);
+    app.add_flag("--floating-base", floating_base,
+                 "put the root link on a free 6-DoF joint (q: position, then unit quaternion "
+                 "w,x,y,z; v: linear, then angular velocity in the base frame)");
+    app.add_option("--lock", locks, "turn joint JOINT into a fixed joint at q = 0 (repeatable)")
+        ->type_name("JOINT");
+    app.add_flag("--lock-massless", lock_massless, "lock every joint whose subtree has no mass");
+    app.add_flag("--mimic-independent", mimic_independent,
+                 "accept URDF mimic joints as independent joints (by default they are refused)");
+  }
+
+  LoadOptions load_options() const {
+    LoadOptions load;
+    load.lock = locks;
+    load.lock_massless = lock_massless;
+    load.floating_base = floating_base;
+    load.mimic_independent = mimic_independent;
+    if (no_gravity) load.gravity = Vec3<double>{0, 0, 0};
+    if (!gravity.empty()) load.gravity = parse_gravity(gravity);
+    return load;
+  }
+
+  /// The flags as dyngen's banner records them (gravity is recorded with its value).
+  std::string text() const {
+    std::string out;
+    if (floating_base) out += " --floating-base";
+    for (const std::string& j : locks) out += " --lock " + j;
+    if (lock_massless) out += " --lock-massless";
+    if (mimic_independent) out += " --mimic-independent";
+    return out;
+  }
+};
+
+/// dyngen eval ROBOT --states FILE: the runtime's results as JSON on stdout.
+int eval_main(int argc, char** argv) {
+  CLI::App app{"dyngen eval: computes RNEA, CRBA and ABA with the runtime at the states in a JSON "
+               "file and prints the results as JSON"};
+  app.name("dyngen eval");
+  std::string input, states;
+  ModelFlags flags;
+  app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
+  app.add_option("--states", states,
+                 "JSON array of states {\"q\": [...], \"v\": [...], \"a\": [...]} or with "
+                 "\"tau\" instead of \"a\"; - reads standard input")
+      ->required();
+  flags.add_to(app);
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const Robot robot = load_robot(input, flags.load_options());
+    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
+    fmt::print("{}\n", evaluate(robot.model, read_states(states)));
+  } catch (const InputError& e) {
+    fmt::print(stderr, "dyngen eval: error: {}\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "dyngen eval: error: {}\n", e.what());
+    return 2;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string_view(argv[1]) == "eval") return eval_main(argc - 1, argv + 1);
   CLI::App app{"dyngen: generates unrolled, allocation-free C++ for the inverse dynamics (RNEA), "
-               "mass matrix (CRBA) and forward dynamics (ABA) of one robot"};
-  std::string input, output, algorithms = "rnea,crba,aba", gravity, scalar = "double", name;
-  std::vector<std::string> locks;
-  bool no_gravity = false, lock_massless = false, quiet = false;
+               "mass matrix (CRBA) and forward dynamics (ABA) of one robot.\n"
+               "dyngen eval ROBOT --states FILE: the runtime's results at given states, as JSON "
+               "(dyngen eval --help)"};
+  std::string input, output, algorithms = "rnea,crba,aba", scalar = "double", name;
+  ModelFlags flags;
+  bool quiet = false;
   app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
   app.add_option("-o,--output", output, "output directory (created if missing)")->required();
   app.add_option("--algorithms", algorithms, "comma-separated subset of rnea,crba,aba")
       ->capture_default_str();
-  auto* gravity_opt = app.add_option("--gravity", gravity,
-                                     "gravity x,y,z in m/s^2, base coordinates (default: the "
-                                     "chain spec's, else 0,0,-9.81)");
-  app.add_flag("--no-gravity", no_gravity, "gravity 0,0,0")->excludes(gravity_opt);
   app.add_option("--scalar", scalar, "scalar type of the generated code")
       ->check(CLI::IsMember({"double", "float"}))
       ->capture_default_str();
   app.add_option("--name", name, "C++ namespace and file prefix (default: the robot's name)");
-  app.add_option("--lock", locks, "turn joint JOINT into a fixed joint at q = 0 (repeatable)")
-      ->type_name("JOINT");
-  app.add_flag("--lock-massless", lock_massless, "lock every joint whose subtree has no mass");
+  flags.add_to(app);
   app.add_flag("-q,--quiet", quiet, "print errors and warnings only");
   app.set_version_flag("--version", std::string("dyngen ") + version);
   CLI11_PARSE(app, argc, argv);
 
   try {
-    LoadOptions load;
-    load.lock = locks;
-    load.lock_massless = lock_massless;
-    if (no_gravity) load.gravity = Vec3<double>{0, 0, 0};
-    if (!gravity.empty()) load.gravity = parse_gravity(gravity);
+    const LoadOptions load = flags.load_options();
     GenerateOptions options;
     options.algorithms = parse_algorithms(algorithms);
     options.single_precision = scalar == "float";
@@ -115,8 +181,7 @@ int main(int argc, char** argv) {
     const Vec3<double>& g = robot.model.gravity;
     options.options_text = fmt::format("--algorithms {} --scalar {} --gravity {},{},{} --name {}",
                                        algorithm_list, scalar, g.x, g.y, g.z, options.name);
-    for (const std::string& j : locks) options.options_text += " --lock " + j;
-    if (lock_massless) options.options_text += " --lock-massless";
+    options.options_text += flags.text();
 
     if (!quiet) {
       fmt::print("robot '{}': {} joints in {} bodies", robot.name, robot.model.nv, robot.model.nbodies);

@@ -1,6 +1,7 @@
 // URDF through urdfdom. tinyxml2 reads the file first for line-numbered XML errors, the
 // document order of joints and the tags urdfdom ignores.
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <set>
@@ -166,22 +167,18 @@ RobotDescription parse_urdf(const std::string& path) {
       case urdf::Joint::CONTINUOUS: spec.kind = JointKind::Revolute; break;
       case urdf::Joint::PRISMATIC: spec.kind = JointKind::Prismatic; break;
       case urdf::Joint::FIXED: spec.kind = JointKind::Fixed; break;
-      case urdf::Joint::FLOATING:
-      case urdf::Joint::PLANAR:
+      case urdf::Joint::FLOATING: spec.kind = JointKind::Floating; break;
+      case urdf::Joint::PLANAR: spec.kind = JointKind::Planar; break;
       case urdf::Joint::UNKNOWN:
-        throw InputError(fmt::format(
-            "{}: joint '{}': type '{}' is not supported (dyngen supports revolute, continuous, "
-            "prismatic and fixed joints)",
-            path, joint->name,
-            joint->type == urdf::Joint::FLOATING ? "floating"
-            : joint->type == urdf::Joint::PLANAR ? "planar"
-                                                 : "unknown"));
+        throw InputError(fmt::format("{}: joint '{}': unknown joint type", path, joint->name));
     }
-    if (joint->mimic)
+    const bool has_axis = spec.kind != JointKind::Fixed && spec.kind != JointKind::Floating;
+    const double norm = std::sqrt(dot(spec.axis, spec.axis));
+    if (has_axis && norm > 0 && std::abs(norm - 1) > 1e-6)
       robot.warnings.push_back(fmt::format(
-          "{}: joint '{}' mimics '{}': mimic joints are not supported yet, it is treated as an "
-          "independent joint",
-          path, joint->name, joint->mimic->joint_name));
+          "{}: joint '{}': axis ({} {} {}) has length {:.6g}; it is normalised", path, joint->name,
+          spec.axis.x, spec.axis.y, spec.axis.z, norm));
+    if (joint->mimic) robot.mimics.push_back({joint->name, joint->mimic->joint_name});
     robot.builder.add_joint(spec);
   }
   return robot;

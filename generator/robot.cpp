@@ -89,14 +89,20 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
   // angles from raw mt19937_64 bits: the same samples on every standard library
   std::mt19937_64 rng(20261121);
   auto angle = [&rng] { return -3.14159 + 6.28318 * static_cast<double>(rng() >> 11) * 0x1.0p-53; };
-  std::vector<double> q(n), v(n, 0.0), tau(n, 0.0), qdd(n), M(n * n);
-  std::vector<bool> flagged(n, false);
+  std::vector<double> q(model.nq), v(n, 0.0), tau(n, 0.0), qdd(n), M(n * n);
+  std::vector<bool> flagged(model.nbodies, false);
   for (int sample = 0; sample < 16; ++sample) {
     for (double& x : q) x = sample == 0 ? 0.0 : angle();
+    for (int i = 0; i < model.nbodies; ++i)
+      if (model.joint_type[i] == JointType::Free) {  // the identity rotation: any will do
+        double* quaternion = &q[model.q_index[i] + 3];
+        quaternion[0] = 1, quaternion[1] = quaternion[2] = quaternion[3] = 0;
+      }
     crba<double>(model, ws, q, M);
     aba<double>(model, ws, q, v, tau, qdd);
     for (int i = 0; i < model.nbodies; ++i) {
-      const int k = model.q_index[i];
+      if (model.joint_type[i] == JointType::Free) continue;  // massless subtrees catch these
+      const int k = model.v_index[i];
       const double Mii = M[k * n + k];
       // a NaN D comes from a division by a vanishing D below, which is flagged itself
       if (!std::isnan(ws.D[i]) && !(ws.D[i] > 1e-12 * Mii)) flagged[i] = true;
@@ -107,6 +113,28 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
     if (flagged[i]) joints.push_back(i);
   return joints;
 }
+
+namespace {
+
+/// Mimic joints that still move are refused, or accepted as independent joints on request.
+void check_mimics(Robot& robot, const std::vector<std::pair<std::string, std::string>>& mimics,
+                  bool independent) {
+  std::string moving;
+  for (const auto& [joint, mimicked] : mimics)
+    if (std::find(robot.model.joint_name.begin(), robot.model.joint_name.end(), joint) !=
+        robot.model.joint_name.end())
+      moving += fmt::format("{}'{}' (mimics '{}')", moving.empty() ? "" : ", ", joint, mimicked);
+  if (moving.empty()) return;
+  if (!independent)
+    throw InputError(fmt::format(
+        "{}: mimic joints are not supported: {}.\nTreat them as independent joints, each with its "
+        "own q, v and tau (--mimic-independent), or lock them (--lock JOINT).",
+        robot.path, moving));
+  robot.warnings.push_back(
+      fmt::format("{}: mimic joints treated as independent joints: {}", robot.path, moving));
+}
+
+}  // namespace
 
 Robot load_robot(const std::string& path, const LoadOptions& options) {
   if (!std::filesystem::is_regular_file(path))
@@ -141,20 +169,23 @@ Robot load_robot(const std::string& path, const LoadOptions& options) {
       builder.lock(joint);
       robot.locked.push_back(joint);
     }
-    robot.model = builder.build(gravity);
+    robot.model = builder.build(gravity, options.floating_base);
     if (options.lock_massless) {
-      const std::vector<int> massless = joints_with_massless_subtree(robot.model);
+      std::vector<int> massless = joints_with_massless_subtree(robot.model);
+      // a floating base with no mass is an error for ABA, not a joint to lock
+      std::erase_if(massless, [&](int i) { return robot.model.joint_type[i] == JointType::Free; });
       for (const int i : massless) {
         builder.lock(robot.model.joint_name[i]);
         robot.locked.push_back(robot.model.joint_name[i]);
       }
-      if (!massless.empty()) robot.model = builder.build(gravity);
+      if (!massless.empty()) robot.model = builder.build(gravity, options.floating_base);
     }
   } catch (const ModelError& e) {
     throw InputError(fmt::format("{}: {}", path, e.what()));
   }
   if (robot.model.nbodies == 0)
     throw InputError(fmt::format("{}: the robot has no moving joint", path));
+  check_mimics(robot, description.mimics, options.mimic_independent);
   return robot;
 }
 

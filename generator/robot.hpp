@@ -23,6 +23,7 @@ struct RobotDescription {
   ModelBuilder builder;
   std::optional<Vec3<double>> gravity;  // a chain spec may set it
   std::vector<std::string> warnings;
+  std::vector<std::pair<std::string, std::string>> mimics;  // (joint, the joint it mimics)
 };
 
 RobotDescription parse_urdf(const std::string& path);
@@ -32,6 +33,8 @@ struct LoadOptions {
   std::vector<std::string> lock;        // joints to turn into fixed ones
   bool lock_massless = false;           // also lock every joint whose subtree has no mass
   std::optional<Vec3<double>> gravity;  // overrides the file's and the default
+  bool floating_base = false;           // the root link on a free joint
+  bool mimic_independent = false;       // accept URDF mimic joints as independent joints
 };
 
 struct Robot {

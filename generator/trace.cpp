@@ -28,30 +28,30 @@ Program<T> trace(Algorithm algorithm, const Model<double>& model, bool simplify)
   const Model<Sym<T>> m = model.cast<T>().template cast<Sym<T>>();
   Workspace<Sym<T>> ws(m);
   const int n = model.nv;
-  auto inputs = [&](const char* name) {
+  auto inputs = [&](const char* name, int size) {
     program.input_arrays.push_back(name);
     std::vector<Sym<T>> x;
-    for (int i = 0; i < n; ++i) x.push_back(Sym<T>::node(g.input(name, i)));
+    for (int i = 0; i < size; ++i) x.push_back(Sym<T>::node(g.input(name, i)));
     return x;
   };
   std::vector<Sym<T>> out;
   switch (algorithm) {
     case Algorithm::Rnea: {
-      const auto q = inputs("q"), v = inputs("v"), a = inputs("a");
+      const auto q = inputs("q", model.nq), v = inputs("v", n), a = inputs("a", n);
       out.resize(n);
       rnea<Sym<T>>(m, ws, q, v, a, out);
       program.output_array = "tau";
       break;
     }
     case Algorithm::Crba: {
-      const auto q = inputs("q");
+      const auto q = inputs("q", model.nq);
       out.resize(n * n);
       crba<Sym<T>>(m, ws, q, out);
       program.output_array = "M";
       break;
     }
     case Algorithm::Aba: {
-      const auto q = inputs("q"), v = inputs("v"), tau = inputs("tau");
+      const auto q = inputs("q", model.nq), v = inputs("v", n), tau = inputs("tau", n);
       out.resize(n);
       aba<Sym<T>>(m, ws, q, v, tau, out);
       program.output_array = "qdd";

@@ -63,6 +63,8 @@ LoadOptions load_options(const std::vector<std::string>& options) {
   LoadOptions load;
   for (std::size_t k = 0; k + 1 < options.size(); ++k)
     if (options[k] == "--lock") load.lock.push_back(options[k + 1]);
+  load.mimic_independent =
+      std::find(options.begin(), options.end(), "--mimic-independent") != options.end();
   return load;
 }
 
@@ -94,10 +96,8 @@ const std::vector<Case> bad_robots = {
     {"DirectoryInsteadOfFile", bad, {}, {"not a regular file"}},
     {"MalformedXml", bad + "/malformed.urdf", {}, {"malformed.urdf:5:", "malformed XML", "link"}},
     {"NotUrdf", bad + "/not_urdf.urdf", {}, {"not a URDF", "no <robot> element"}},
-    {"FloatingJoint", bad + "/floating_joint.urdf", {},
-     {"joint 'free'", "type 'floating' is not supported"}},
-    {"PlanarJoint", bad + "/planar_joint.urdf", {},
-     {"joint 'free'", "type 'planar' is not supported"}},
+    {"MimicJoint", bad + "/imperfect.urdf", {},
+     {"mimic joints are not supported", "'follower' (mimics 'elbow')", "--mimic-independent"}},
     {"LinkWithTwoParents", bad + "/two_parents.urdf", {},
      {"link 'tip'", "two parent joints", "'left_to_tip'", "'right_to_tip'", "loop"}},
     {"LoopWithoutRoot", bad + "/cycle.urdf", {}, {"joints 'a_to_b', 'b_to_a'", "form a loop"}},
@@ -136,7 +136,7 @@ const std::vector<Case> bad_robots = {
     {"ChainNoLinks", bad + "/no_links.yaml", {}, {"links", "expected a non-empty list"}},
     {"ChainDuplicateLink", bad + "/duplicate_link.yaml", {},
      {"links[1]", "link 'arm' is defined twice"}},
-    {"AbaOnRomeo", models + "/romeo.urdf", {},
+    {"AbaOnRomeo", models + "/romeo.urdf", {"--mimic-independent"},
      {"ABA is undefined", "24 joints move no mass", "--lock LHand", "--lock-massless",
       "--algorithms rnea,crba"}},
 };
@@ -266,7 +266,7 @@ TEST(Romeo, AbaErrorListsExactlyTheHandJointsAndHowToLockThem) {
 
 TEST(Romeo, LockMasslessLocksTheHandJointsAndAbaGenerates) {
   LoadOptions load;
-  load.lock_massless = true;
+  load.lock_massless = true;  // locks every mimic joint too
   const Robot robot = load_robot(models + "/romeo.urdf", load);
   EXPECT_EQ(std::set<std::string>(robot.locked.begin(), robot.locked.end()), romeo_hand_joints);
   EXPECT_EQ(robot.model.nv, 55 - 24);
@@ -278,7 +278,7 @@ TEST(Romeo, LockMasslessLocksTheHandJointsAndAbaGenerates) {
 }
 
 TEST(Romeo, RneaAndCrbaAloneGenerateWithEveryJoint) {
-  const Robot robot = load_robot(models + "/romeo.urdf");
+  const Robot robot = load_robot(models + "/romeo.urdf", {.mimic_independent = true});
   EXPECT_EQ(robot.model.nv, 55);
   GenerateOptions options;
   options.name = "romeo";
@@ -290,7 +290,8 @@ using RomeoCommand = Scratch;
 
 TEST_F(RomeoCommand, SucceedsWithLockMasslessOrWithoutAba) {
   for (const std::vector<std::string>& options :
-       {std::vector<std::string>{"--lock-massless"}, {"--algorithms", "rnea,crba"}}) {
+       {std::vector<std::string>{"--lock-massless"},
+        {"--mimic-independent", "--algorithms", "rnea,crba"}}) {
     const fs::path out = dir / ("out" + options.back());
     std::vector<std::string> args{models + "/romeo.urdf", "-q", "-o", out.string()};
     args.insert(args.end(), options.begin(), options.end());
@@ -310,12 +311,12 @@ const std::vector<std::vector<std::string>> imperfect_warnings = {
     {"<transmission> is not used"},
     {"<drake:collision_filter_group> is not used"},
     {"<drake:rotor_inertia> in <joint> is not used"},
-    {"joint 'follower' mimics 'elbow'", "not supported yet"},
+    {"mimic joints treated as independent joints", "'follower' (mimics 'elbow')"},
 };
 
 TEST(Warnings, ImperfectUrdfLoadsWithOneWarningPerOddity) {
   const std::string path = bad + "/imperfect.urdf";
-  const Robot robot = load_robot(path);
+  const Robot robot = load_robot(path, {.mimic_independent = true});
   EXPECT_EQ(robot.model.nv, 3) << "the mimic joint is an independent joint";
   EXPECT_EQ(robot.warnings.size(), imperfect_warnings.size());
   for (const std::string& w : robot.warnings) EXPECT_EQ(w.rfind(path + ": ", 0), 0u) << w;
@@ -336,7 +337,8 @@ using WarningsCommand = Scratch;
 
 TEST_F(WarningsCommand, PrintedOnStderrEvenWhenQuietAndOutputWritten) {
   const CliResult r =
-      run_dyngen({bad + "/imperfect.urdf", "-q", "-o", (dir / "out").string()}, dir);
+      run_dyngen({bad + "/imperfect.urdf", "--mimic-independent", "-q", "-o", (dir / "out").string()},
+                 dir);
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out;
   std::size_t lines = 0;

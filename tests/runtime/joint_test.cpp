@@ -38,6 +38,8 @@ Model<double> one_joint(JointType type, const Vec3<double>& axis, test::Random& 
        {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)}}};
   model.I = {{1, {}, {1, 1, 1, 0, 0, 0}}};
   model.q_index = {0};
+  model.v_index = {0};
+  if (type == JointType::Free) model.nq = 7, model.nv = 6;
   return model;
 }
 
@@ -83,7 +85,7 @@ TEST(Joint, TransformMatchesDefinition) {
       const Model<double> model = one_joint(c.type, c.axis, rng);
       const double q = rng.uniform(-2 * pi, 2 * pi);
       worst = std::max(worst,
-                       error(dense(joint_transform(model, 0, q)), dense_joint_transform(model, q)));
+                       error(dense(joint_transform(model, 0, &q)), dense_joint_transform(model, q)));
     }
     // a handful of products per entry, and a rotation E orthogonal to a few eps, which the
     // prismatic identity E skew(E^T k q) = skew(k q) E magnifies by |q| <= 2 pi (measured: at
@@ -102,7 +104,7 @@ TEST(Joint, AxisKindsHaveExactZerosAndOnes) {
     if (c.type == JointType::Revolute || c.type == JointType::Prismatic) continue;
     model.joint_type[0] = c.type;
     model.joint_axis[0] = c.axis;
-    const Matrix3 E = dense(joint_transform(model, 0, q).E);
+    const Matrix3 E = dense(joint_transform(model, 0, &q).E);
     const Eigen::Vector3d k = dense(c.axis);
     EXPECT_EQ(E * k, k) << joint_type_name(c.type);
     EXPECT_EQ(E.transpose() * k, k) << joint_type_name(c.type);
@@ -117,12 +119,53 @@ TEST(Joint, MotionAndProjection) {
     (is_revolute(c.type) ? S.head<3>() : S.tail<3>()) = dense(c.axis);
     for (int k = 0; k < 20; ++k) {
       const double qd = rng.uniform(-3, 3);
-      EXPECT_EQ(dense(joint_motion(model, 0, qd)), (S * qd).eval());
+      EXPECT_EQ(dense(joint_motion(model, 0, &qd)), (S * qd).eval());
+      EXPECT_EQ(dense(joint_column(model, 0, 0)), S);
+      EXPECT_EQ(dense(joint_force(model, 0, &qd)), (S * qd).eval());
       const Force<double> f{{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)},
                             {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)}};
-      EXPECT_NEAR(joint_project(model, 0, f), S.dot(dense(f)), 4 * eps);
+      double STf = 0;
+      joint_project(model, 0, f, &STf);
+      EXPECT_NEAR(STf, S.dot(dense(f)), 4 * eps);
     }
   }
+}
+
+// A free joint: XJ = rot(R^T) xlt(p) for the rotation R of the quaternion, S = [0 1; 1 0]
+// (v entries are linear, then angular; spatial vectors angular, then linear).
+TEST(Joint, FreeJointMatchesDefinition) {
+  test::Random rng(4);
+  Matrix6 S = Matrix6::Zero();
+  S.topRightCorner<3, 3>().setIdentity();
+  S.bottomLeftCorner<3, 3>().setIdentity();
+  double worst = 0;
+  for (int k = 0; k < 200; ++k) {
+    const Model<double> model = one_joint(JointType::Free, {0, 0, 0}, rng);
+    const Eigen::Quaterniond quat = Eigen::Quaterniond(rng.uniform(-1, 1), rng.uniform(-1, 1),
+                                                       rng.uniform(-1, 1), rng.uniform(-1, 1))
+                                        .normalized();
+    const Eigen::Vector3d p(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+    const double q[7] = {p.x(), p.y(), p.z(), quat.w(), quat.x(), quat.y(), quat.z()};
+    const Matrix3 E = quat.toRotationMatrix().transpose();
+    Matrix6 XJ = Matrix6::Zero();
+    XJ.topLeftCorner<3, 3>() = E;
+    XJ.bottomRightCorner<3, 3>() = E;
+    XJ.bottomLeftCorner<3, 3>() = -E * skew(p);
+    worst = std::max(worst, error(dense(joint_transform(model, 0, q)),
+                                  (XJ * dense(model.X_tree[0])).eval()));
+
+    double qd[6];
+    for (double& x : qd) x = rng.uniform(-3, 3);
+    const Eigen::Map<const Vector6> qd6(qd);
+    EXPECT_EQ(dense(joint_motion(model, 0, qd)), (S * qd6).eval());
+    EXPECT_EQ(dense(joint_force(model, 0, qd)), (S * qd6).eval());
+    for (int d = 0; d < 6; ++d) EXPECT_EQ(dense(joint_column(model, 0, d)), S.col(d));
+    const Force<double> f{{qd[0], qd[1], qd[2]}, {qd[3], qd[4], qd[5]}};
+    double STf[6];
+    joint_project(model, 0, f, STf);
+    EXPECT_EQ(Eigen::Map<const Vector6>(STf), (S.transpose() * dense(f)).eval());
+  }
+  EXPECT_LE(worst, 16 * eps);
 }
 
 }  // namespace

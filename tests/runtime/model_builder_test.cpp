@@ -111,7 +111,7 @@ std::pair<double, Vector3> mass_and_com(const Model<double>& model, const Vector
   double m = 0;
   Vector3 mc = Vector3::Zero();
   for (int i = 0; i < model.nbodies; ++i) {
-    const Xform<double> X = joint_transform(model, i, q[model.q_index[i]]);
+    const Xform<double> X = joint_transform(model, i, &q[model.q_index[i]]);
     const int parent = model.parent[i];
     const Matrix3 R_p = parent < 0 ? Matrix3::Identity() : R[parent];
     R[i] = R_p * dense(X.E).transpose();
@@ -270,7 +270,7 @@ void expect_topological(const Model<double>& model, const std::string& name) {
 
 TEST(ModelBuilder, SharedRobotsAndRandomChains) {
   for (const test::RobotFile& robot : test::robot_files()) {
-    const Model<double> model = gen::load_robot(robot.path).model;
+    const Model<double> model = gen::load_robot(robot.path, robot.options).model;
     expect_topological(model, robot.name);
     expect_axis_kinds(model, robot.name);
   }

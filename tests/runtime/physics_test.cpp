@@ -58,15 +58,15 @@ class Energy {
  private:
   void kinematics(const Vector& q, const Vector& qd) {
     for (int i = 0; i < model_.nbodies; ++i) {
-      const int k = model_.q_index[i], parent = model_.parent[i];
+      const int parent = model_.parent[i];
       const Matrix3 R_p = parent < 0 ? Matrix3::Identity() : R_[parent];
       const Vector3 p_p = parent < 0 ? Vector3::Zero() : p_[parent];
       const Vector3 w_p = parent < 0 ? Vector3::Zero() : w_[parent];
       const Vector3 v_p = parent < 0 ? Vector3::Zero() : v_[parent];
-      const Xform<double> X = joint_transform(model_, i, q[k]);
+      const Xform<double> X = joint_transform(model_, i, &q[model_.q_index[i]]);
       R_[i] = R_p * dense(X.E).transpose();
       p_[i] = p_p + R_p * dense(X.r);
-      const Motion<double> S_qd = joint_motion(model_, i, qd[k]);
+      const Motion<double> S_qd = joint_motion(model_, i, &qd[model_.v_index[i]]);
       w_[i] = w_p + R_[i] * dense(S_qd.ang);
       v_[i] = v_p + w_p.cross(p_[i] - p_p) + R_[i] * dense(S_qd.lin);
     }
@@ -82,12 +82,18 @@ struct Case {
   std::function<Model<double>()> make;
 };
 
-/// Every shared robot (with romeo's massless joints locked, which ABA needs), the documented
-/// five-link case and random chains.
+/// Every shared robot (with romeo's massless joints locked, which ABA needs), fixed and
+/// floating, the documented five-link case and random chains.
 std::vector<Case> cases() {
   std::vector<Case> all;
-  for (const test::RobotFile& robot : test::robot_files())
+  for (const test::RobotFile& robot : test::robot_files()) {
     all.push_back({robot.name, [=] { return test::load_for_aba(robot); }});
+    all.push_back({robot.name + "_floating", [=] {
+                     gen::LoadOptions options = robot.aba_options;
+                     options.floating_base = true;
+                     return gen::load_robot(robot.path, options).model;
+                   }});
+  }
   all.push_back(
       {"planar5", [] { return gen::load_robot(test::model_path("planar5.yaml")).model; }});
   all.push_back({"planar_chain_12", [] { return test::make_random_chain(12, 31, true); }});
@@ -134,8 +140,21 @@ TEST_P(Physics, KineticEnergyIsHalfQdTransposeMQd) {
 constexpr double fd_h = 1e-8;
 constexpr double fd_tol = 1e-4;
 
+std::span<const double> view(const Vector& x) { return {x.data(), std::size_t(x.size())}; }
+std::span<double> view(Vector& x) { return {x.data(), std::size_t(x.size())}; }
+
+/// q moved by dt along velocity v: q + dt qdot(q, v), back on unit quaternions. A smooth curve
+/// through q with tangent v, which is all that central differences and RK4 need.
+Vector step(const Model<double>& model, const Vector& q, const Vector& v, double dt) {
+  Vector qdot(model.nq);
+  configuration_rate<double>(model, view(q), view(v), view(qdot));
+  Vector out = q + dt * qdot;
+  normalize_configuration<double>(model, view(out));
+  return out;
+}
+
 TEST_P(Physics, GravityTorqueIsPotentialGradient) {
-  // g(q) = RNEA(q, 0, 0) = dV/dq
+  // g(q) = RNEA(q, 0, 0) = dV/dq along each velocity direction
   const Model<double> model = GetParam().make();
   const int n = model.nv;
   Workspace<double> ws(model);
@@ -146,13 +165,15 @@ TEST_P(Physics, GravityTorqueIsPotentialGradient) {
   double worst = 0;
   for (int k = 0; k < 5; ++k) {
     const Vector q = test::to_eigen(test::random_state(model, rng).q);
-    rnea<double>(model, ws, std::span(q.data(), n), zero, zero, g);
+    rnea<double>(model, ws, view(q), zero, zero, g);
     ASSERT_TRUE(test::to_eigen(g).allFinite());
     // |V| bounds the rounding of V; |g| the size of the gradient
     const double scale = std::abs(energy.potential(q)) + test::to_eigen(g).cwiseAbs().maxCoeff();
     for (int j = 0; j < n; ++j) {
-      const Vector dq = Vector::Unit(n, j) * fd_h;
-      const double dV = (energy.potential(q + dq) - energy.potential(q - dq)) / (2 * fd_h);
+      const Vector e = Vector::Unit(n, j);
+      const double dV = (energy.potential(step(model, q, e, fd_h)) -
+                         energy.potential(step(model, q, e, -fd_h))) /
+                        (2 * fd_h);
       ASSERT_TRUE(std::isfinite(dV)) << "joint " << j;
       worst = std::max(worst, std::abs(dV - g[j]) / scale);
     }
@@ -169,28 +190,37 @@ TEST_P(Physics, PowerIsRateOfChangeOfEnergy) {
   Workspace<double> ws(model);
   Energy energy(model);
   test::Random rng(43);
-  Vector q = test::to_eigen(rng.vector(n, -3, 3)), qd = test::to_eigen(rng.vector(n, -1, 1));
+  test::State start = test::random_state(model, rng);
+  Vector q = test::to_eigen(start.q), qd = test::to_eigen(rng.vector(n, -1, 1));
   // tau_i = M_ii(q0) times up to 2 rad/s^2: light fingers as well as heavy legs then move by
   // comparable angles over the trajectory (a torque of a few Nm would spin pr2's fingers at
   // 1e5 rad/s^2 and RK4 with a 5 ms step would diverge)
   std::vector<double> M(n * n);
-  crba<double>(model, ws, std::span(q.data(), n), M);
+  crba<double>(model, ws, view(q), M);
   const Vector tau =
       test::to_eigen(M, n).diagonal().cwiseProduct(test::to_eigen(rng.vector(n, -2, 2)));
 
   auto acceleration = [&](const Vector& x, const Vector& xd) {
     Vector xdd(n);
-    aba<double>(model, ws, std::span(x.data(), n), std::span(xd.data(), n),
-                std::span(tau.data(), n), std::span(xdd.data(), n));
+    aba<double>(model, ws, view(x), view(xd), view(tau), view(xdd));
     return xdd;
   };
+  auto rate = [&](const Vector& x, const Vector& xd) {
+    Vector xdot(model.nq);
+    configuration_rate<double>(model, view(x), view(xd), view(xdot));
+    return xdot;
+  };
   auto rk4 = [&](Vector& x, Vector& xd, double dt) {
-    const Vector k1 = xd, l1 = acceleration(x, xd);
-    const Vector k2 = xd + dt / 2 * l1, l2 = acceleration(x + dt / 2 * k1, k2);
-    const Vector k3 = xd + dt / 2 * l2, l3 = acceleration(x + dt / 2 * k2, k3);
-    const Vector k4 = xd + dt * l3, l4 = acceleration(x + dt * k3, k4);
+    const Vector k1 = rate(x, xd), l1 = acceleration(x, xd);
+    const Vector x2 = x + dt / 2 * k1, xd2 = xd + dt / 2 * l1;
+    const Vector k2 = rate(x2, xd2), l2 = acceleration(x2, xd2);
+    const Vector x3 = x + dt / 2 * k2, xd3 = xd + dt / 2 * l2;
+    const Vector k3 = rate(x3, xd3), l3 = acceleration(x3, xd3);
+    const Vector x4 = x + dt * k3, xd4 = xd + dt * l3;
+    const Vector k4 = rate(x4, xd4), l4 = acceleration(x4, xd4);
     x += dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
     xd += dt / 6 * (l1 + 2 * l2 + 2 * l3 + l4);
+    normalize_configuration<double>(model, view(x));
   };
   auto total_energy = [&](const Vector& x, const Vector& xd) {
     return energy.kinetic(x, xd) + energy.potential(x);

@@ -260,5 +260,27 @@ TEST(Spatial, CrossProductsAreInvariantUnderTransforms) {
   EXPECT_LE(worst, 4 * bound_eps);
 }
 
+// solve() against Eigen's LDL^T with pivoting, on positive definite matrices B B^T + 0.1 1
+// (condition numbers up to about 1e3); the error bound is the usual eps cond(A) one.
+TEST(Spatial, SolveArticulatedInertia) {
+  Sampler s(12);
+  double worst = 0;
+  for (int k = 0; k < samples; ++k) {
+    Matrix6 B;
+    for (int e = 0; e < 36; ++e) B(e / 6, e % 6) = s.scalar();
+    const Matrix6 A = B * B.transpose() + 0.1 * Matrix6::Identity();
+    const ArticulatedInertia<double> IA{{A(0, 0), A(1, 1), A(2, 2), A(0, 1), A(0, 2), A(1, 2)},
+                                        {A(0, 3), A(0, 4), A(0, 5), A(1, 3), A(1, 4), A(1, 5),
+                                         A(2, 3), A(2, 4), A(2, 5)},
+                                        {A(3, 3), A(4, 4), A(5, 5), A(3, 4), A(3, 5), A(4, 5)}};
+    ASSERT_EQ(dense(IA), A);
+    const Force<double> b = s.force();
+    const Vector6 reference = A.ldlt().solve(dense(b));
+    const double cond = A.norm() * A.inverse().norm();
+    worst = std::max(worst, error_in_eps(dense(solve(IA, b)), reference) / cond);
+  }
+  EXPECT_LE(worst, 4.0);
+}
+
 }  // namespace
 }  // namespace dyngen

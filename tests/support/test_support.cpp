@@ -47,6 +47,16 @@ Vec3<double> random_axis(Random& rng) {
 
 }  // namespace
 
+std::vector<double> random_unit_quaternion(Random& rng) {
+  for (;;) {
+    // uniform in the unit ball, away from 0, then normalised: uniform on the sphere
+    const double w = rng.uniform(-1, 1), x = rng.uniform(-1, 1), y = rng.uniform(-1, 1),
+                 z = rng.uniform(-1, 1);
+    const double norm = std::sqrt(w * w + x * x + y * y + z * z);
+    if (norm > 0.1 && norm <= 1) return {w / norm, x / norm, y / norm, z / norm};
+  }
+}
+
 std::vector<double> Random::vector(int n, double lo, double hi) {
   std::vector<double> x(n);
   for (double& xi : x) xi = uniform(lo, hi);
@@ -105,7 +115,15 @@ Model<double> make_random_chain(int n, std::uint64_t seed, bool planar) {
 
 State random_state(const Model<double>& model, Random& rng) {
   State s;
-  s.q = rng.vector(model.nv, -pi, pi);
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (model.joint_type[i] != JointType::Free) {
+      s.q.push_back(rng.uniform(-pi, pi));
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) s.q.push_back(rng.uniform(-1, 1));
+    const std::vector<double> w = random_unit_quaternion(rng);
+    s.q.insert(s.q.end(), w.begin(), w.end());
+  }
   s.qd = rng.vector(model.nv, -2, 2);
   s.qdd = rng.vector(model.nv, -2, 2);
   s.tau = rng.vector(model.nv, -5, 5);
@@ -120,7 +138,9 @@ std::vector<RobotFile> robot_files() {
   std::vector<RobotFile> robots;
   for (const auto& entry : std::filesystem::directory_iterator(DYNGEN_TEST_MODELS)) {
     if (entry.path().extension() != ".urdf") continue;
-    RobotFile robot{entry.path().stem().string(), entry.path().string(), {}};
+    RobotFile robot{entry.path().stem().string(), entry.path().string(), {}, {}};
+    robot.options.mimic_independent = true;
+    robot.aba_options = robot.options;
     robot.aba_options.lock_massless = robot.name == "romeo";
     robots.push_back(robot);
   }

@@ -57,13 +57,16 @@ class Random {
 /// triangle inequality (they are those of a box-shaped mass distribution), in a random frame.
 Model<double> make_random_chain(int n, std::uint64_t seed, bool planar);
 
-/// A random state for a model; sizes are model.nv.
+/// A random state for a model: q has model.nq entries, the others model.nv.
 struct State {
   std::vector<double> q, qd, qdd, tau;
 };
 
+/// A unit quaternion (w, x, y, z), uniformly distributed over rotations.
+std::vector<double> random_unit_quaternion(Random& rng);
+
 /// q in [-pi, pi], qd and qdd in [-2, 2], tau in [-5, 5] (the same numbers in metres for
-/// prismatic joints).
+/// prismatic joints); a free joint's position in [-1, 1] m and a random unit quaternion.
 State random_state(const Model<double>& model, Random& rng);
 
 /// The same values in another scalar type.
@@ -75,12 +78,14 @@ std::vector<T> cast_vector(const std::vector<double>& x) {
 /// Path of a file in tests/models.
 std::string model_path(const std::string& file);
 
-/// One of the shared robot URDFs in tests/models and the options under which ABA is defined
-/// for it (romeo: lock_massless, since its hands have no mass and would make D_i = 0).
+/// One of the shared robot URDFs in tests/models, the options it loads with (panda, pr2,
+/// baxter and romeo have mimic joints) and those under which ABA is defined for it (romeo:
+/// lock_massless too, since its hands have no mass and would make D_i = 0).
 struct RobotFile {
   std::string name;  // file name without extension
   std::string path;
-  gen::LoadOptions aba_options;
+  gen::LoadOptions options;      // mimic joints accepted as independent joints, like the peers
+  gen::LoadOptions aba_options;  // and romeo's massless joints locked
 };
 
 /// Every URDF in tests/models, in alphabetical order.

@@ -18,26 +18,29 @@ void crba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
   // kinematics: Xup_i, and Ic_i = I_i
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Kinematics);
-    ws.Xup[i] = joint_transform(model, i, q[model.q_index[i]]);
+    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
     ws.Ic[i] = model.I[i];
   }
   for (int k = 0; k < n * n; ++k) M[k] = S{};
 
-  // backward pass: Ic_p += Xup^T Ic_i Xup; F = Ic_i S_i; M_ii = S_i^T F;
-  // M_ij = M_ji = S_j^T F with F carried to each ancestor j
+  // backward pass: Ic_p += Xup^T Ic_i Xup; for each column d of S_i: F = Ic_i S_id,
+  // M_ii[d] = S_i^T F; M_ij[d] = M_ji^T[d] = S_j^T F with F carried to each ancestor j
   for (int i = model.nbodies - 1; i >= 0; --i) {
     TraceHook<S>::enter(i, Pass::CompositeInertia);
     const int p = model.parent[i];
     if (p >= 0) ws.Ic[p] = ws.Ic[p] + apply_inertia_T(ws.Xup[i], ws.Ic[i]);
-    const int qi = model.q_index[i];
-    Force<S> F = mul(ws.Ic[i], joint_motion(model, i, S(1)));
-    M[qi * n + qi] = joint_project(model, i, F);
-    for (int j = i; model.parent[j] >= 0;) {
-      F = apply_force_T(ws.Xup[j], F);
-      j = model.parent[j];
-      const int qj = model.q_index[j];
-      M[qi * n + qj] = joint_project(model, j, F);
-      M[qj * n + qi] = M[qi * n + qj];
+    for (int d = 0; d < joint_nv(model.joint_type[i]); ++d) {
+      const int row = model.v_index[i] + d;
+      Force<S> F = mul(ws.Ic[i], joint_column(model, i, d));
+      joint_project(model, i, F, &M[row * n + model.v_index[i]]);
+      for (int j = i; model.parent[j] >= 0;) {
+        F = apply_force_T(ws.Xup[j], F);
+        j = model.parent[j];
+        const int vj = model.v_index[j];
+        joint_project(model, j, F, &M[row * n + vj]);
+        for (int e = 0; e < joint_nv(model.joint_type[j]); ++e)
+          M[(vj + e) * n + row] = M[row * n + vj + e];
+      }
     }
   }
 }

@@ -4,6 +4,7 @@
 
 #include "dyngen/aba.hpp"
 #include "dyngen/crba.hpp"
+#include "dyngen/kinematics.hpp"
 #include "dyngen/model.hpp"
 #include "dyngen/model_builder.hpp"
 #include "dyngen/rnea.hpp"

@@ -1,5 +1,6 @@
 // Joint model (RBDA sec. 4.4, Table 4.1): the joint transform and the motion subspace S.
-// One switch on the joint type, which is model data, so a trace removes it.
+// One switch on the joint type, which is model data, so a trace removes it. Each function
+// takes the joint's own entries: q + q_index[i], v + v_index[i].
 #pragma once
 
 #include <cmath>
@@ -10,12 +11,13 @@ namespace dyngen {
 
 /// Xup = XJ(q) X_tree for body i (RBDA eq. 4.32 with Table 4.1's XJ).
 template <class S>
-Xform<S> joint_transform(const Model<S>& model, int i, const S& q) {
+Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
   using std::cos;
   using std::sin;
   const Xform<S>& Xt = model.X_tree[i];
   const Mat3<S>& T = Xt.E;
   const Vec3<S>& k = model.joint_axis[i];
+  const S& q = qi[0];
   switch (model.joint_type[i]) {
     case JointType::RevoluteX: {
       // rot_x(q) E_tree; k.x = +-1 turns the rotation's sense
@@ -48,23 +50,68 @@ Xform<S> joint_transform(const Model<S>& model, int i, const S& q) {
     case JointType::Prismatic:
       // XJ = xlt(k q): r = r_tree + E_tree^T k q
       return {T, Xt.r + mul_T(T, scale(k, q))};
+    case JointType::Free: {
+      // XJ = rot(R^T) xlt(p) with R the rotation of the unit quaternion (w, x, y, z)
+      const Vec3<S> p{qi[0], qi[1], qi[2]};
+      const S &w = qi[3], &x = qi[4], &y = qi[5], &z = qi[6];
+      const S xx = x * x, yy = y * y, zz = z * z;
+      const S xy = x * y, xz = x * z, yz = y * z, wx = w * x, wy = w * y, wz = w * z;
+      const S one(1), two(2);
+      const Mat3<S> RT{one - two * (yy + zz), two * (xy + wz),        two * (xz - wy),
+                       two * (xy - wz),        one - two * (xx + zz), two * (yz + wx),
+                       two * (xz + wy),        two * (yz - wx),        one - two * (xx + yy)};
+      return {mul(RT, T), Xt.r + mul_T(T, p)};
+    }
   }
   return Xt;
 }
 
-/// S qd
+/// S qd, from the joint's velocity entries
 template <class S>
-Motion<S> joint_motion(const Model<S>& model, int i, const S& qd) {
-  const Vec3<S> w = scale(model.joint_axis[i], qd);
+Motion<S> joint_motion(const Model<S>& model, int i, const S* qd) {
+  if (model.joint_type[i] == JointType::Free)
+    return {{qd[3], qd[4], qd[5]}, {qd[0], qd[1], qd[2]}};
+  const Vec3<S> w = scale(model.joint_axis[i], qd[0]);
   if (is_revolute(model.joint_type[i])) return {w, {}};
   return {{}, w};
 }
 
-/// S^T f
+/// Column d of S
 template <class S>
-S joint_project(const Model<S>& model, int i, const Force<S>& f) {
-  if (is_revolute(model.joint_type[i])) return dot(model.joint_axis[i], f.ang);
-  return dot(model.joint_axis[i], f.lin);
+Motion<S> joint_column(const Model<S>& model, int i, int d) {
+  if (model.joint_type[i] == JointType::Free) {
+    S e[6]{};
+    e[d] = S(1);
+    return joint_motion(model, i, e);
+  }
+  const S one(1);
+  return joint_motion(model, i, &one);
+}
+
+/// S^T f, into the joint's entries of out
+template <class S>
+void joint_project(const Model<S>& model, int i, const Force<S>& f, S* out) {
+  switch (model.joint_type[i]) {
+    case JointType::Free:
+      out[0] = f.lin.x, out[1] = f.lin.y, out[2] = f.lin.z;
+      out[3] = f.ang.x, out[4] = f.ang.y, out[5] = f.ang.z;
+      return;
+    case JointType::Prismatic:
+      out[0] = dot(model.joint_axis[i], f.lin);
+      return;
+    default:
+      out[0] = dot(model.joint_axis[i], f.ang);
+  }
+}
+
+/// S tau: the joint's entries of tau as a spatial force
+template <class S>
+Force<S> joint_force(const Model<S>& model, int i, const S* tau) {
+  if (model.joint_type[i] == JointType::Free)
+    return {{tau[3], tau[4], tau[5]}, {tau[0], tau[1], tau[2]}};
+  const Vec3<S> n = scale(model.joint_axis[i], tau[0]);
+  if (is_revolute(model.joint_type[i])) return {n, {}};
+  return {{}, n};
 }
 
 }  // namespace dyngen

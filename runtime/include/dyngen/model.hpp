@@ -1,5 +1,5 @@
-// The immutable robot model: bodies in topological order (parent[i] < i), one 1-DoF joint
-// per body, structure-of-arrays like MuJoCo's mjModel.
+// The immutable robot model: bodies in topological order (parent[i] < i), one joint per body
+// (1-DoF, or a 6-DoF free joint), structure-of-arrays like MuJoCo's mjModel.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +13,15 @@ namespace dyngen {
 
 /// Joint kinds. Axis-aligned revolute joints have their own kinds so that the joint
 /// rotation has exact zeros and ones (the general formula puts (1-c)+c on the diagonal).
-enum class JointType : std::uint8_t { RevoluteX, RevoluteY, RevoluteZ, Revolute, Prismatic };
+///
+/// Free: a 6-DoF joint (a floating base, or a URDF floating joint). Its 7 q entries are
+/// [px, py, pz, qw, qx, qy, qz]: the child origin in parent coordinates and the unit
+/// quaternion (w first) of the child's orientation in the parent. Its 6 v entries are
+/// [vx, vy, vz, wx, wy, wz]: the linear velocity of the child origin and the angular velocity,
+/// both in child coordinates; accelerations are their time derivatives, and tau is
+/// [fx, fy, fz, nx, ny, nz], the force and the moment about the child origin, in child
+/// coordinates.
+enum class JointType : std::uint8_t { RevoluteX, RevoluteY, RevoluteZ, Revolute, Prismatic, Free };
 
 inline const char* joint_type_name(JointType t) {
   switch (t) {
@@ -22,23 +30,31 @@ inline const char* joint_type_name(JointType t) {
     case JointType::RevoluteZ: return "RevoluteZ";
     case JointType::Revolute: return "Revolute";
     case JointType::Prismatic: return "Prismatic";
+    case JointType::Free: return "Free";
   }
   return "?";
 }
 
-inline bool is_revolute(JointType t) { return t != JointType::Prismatic; }
+inline bool is_revolute(JointType t) { return t != JointType::Prismatic && t != JointType::Free; }
+
+/// Entries of the joint in q.
+inline int joint_nq(JointType t) { return t == JointType::Free ? 7 : 1; }
+
+/// Entries of the joint in v, a, tau and the rows of M.
+inline int joint_nv(JointType t) { return t == JointType::Free ? 6 : 1; }
 
 template <class S>
 struct Model {
   int nbodies = 0;                     // bodies, not counting the fixed base
-  int nq = 0;                          // configuration size (one per joint)
-  int nv = 0;                          // velocity size (one per joint)
+  int nq = 0;                          // configuration size
+  int nv = 0;                          // velocity size
   std::vector<int> parent;             // [nbodies] parent body, -1 for the base; parent[i] < i
   std::vector<JointType> joint_type;   // [nbodies]
   std::vector<Vec3<S>> joint_axis;     // [nbodies] unit axis, body coordinates
   std::vector<Xform<S>> X_tree;        // [nbodies] joint frame at q = 0 relative to parent
   std::vector<RigidInertia<S>> I;      // [nbodies] about the body origin, body coordinates
-  std::vector<int> q_index;            // [nbodies] index of the joint's q, v, tau
+  std::vector<int> q_index;            // [nbodies] index of the joint's first entry in q
+  std::vector<int> v_index;            // [nbodies] ... in v, a, tau and the rows of M
   Vec3<S> gravity;                     // gravitational acceleration, base coordinates
   std::vector<std::string> body_name;  // [nbodies]
   std::vector<std::string> joint_name; // [nbodies]
@@ -53,6 +69,7 @@ struct Model {
     m.parent = parent;
     m.joint_type = joint_type;
     m.q_index = q_index;
+    m.v_index = v_index;
     m.body_name = body_name;
     m.joint_name = joint_name;
     m.gravity = cast_vec<T>(gravity);
@@ -80,6 +97,22 @@ struct Model {
   }
 };
 
+/// The name of each entry of v (and of a, tau and the rows of M): the joint's name, or for a
+/// free joint its name followed by :vx, :vy, :vz, :wx, :wy, :wz.
+template <class S>
+std::vector<std::string> velocity_names(const Model<S>& model) {
+  std::vector<std::string> names;
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (model.joint_type[i] != JointType::Free) {
+      names.push_back(model.joint_name[i]);
+      continue;
+    }
+    for (const char* suffix : {":vx", ":vy", ":vz", ":wx", ":wy", ":wz"})
+      names.push_back(model.joint_name[i] + suffix);
+  }
+  return names;
+}
+
 /// One body of a model as plain numbers: what generated model tables hold.
 struct BodyRecord {
   const char* body_name;
@@ -99,17 +132,18 @@ inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
                                         const double (&gravity)[3]) {
   Model<double> m;
   m.nbodies = static_cast<int>(bodies.size());
-  m.nq = m.nv = m.nbodies;
   m.gravity = {gravity[0], gravity[1], gravity[2]};
-  int index = 0;
   for (const BodyRecord& b : bodies) {
+    m.q_index.push_back(m.nq);
+    m.v_index.push_back(m.nv);
+    m.nq += joint_nq(b.joint_type);
+    m.nv += joint_nv(b.joint_type);
     m.parent.push_back(b.parent);
     m.joint_type.push_back(b.joint_type);
     m.joint_axis.push_back({b.axis[0], b.axis[1], b.axis[2]});
     m.X_tree.push_back({{b.E[0], b.E[1], b.E[2], b.E[3], b.E[4], b.E[5], b.E[6], b.E[7], b.E[8]},
                         {b.r[0], b.r[1], b.r[2]}});
     m.I.push_back({b.mass, {b.h[0], b.h[1], b.h[2]}, {b.I[0], b.I[1], b.I[2], b.I[3], b.I[4], b.I[5]}});
-    m.q_index.push_back(index++);
     m.body_name.emplace_back(b.body_name);
     m.joint_name.emplace_back(b.joint_name);
   }

@@ -28,7 +28,10 @@ struct LinkSpec {
   Sym3<double> I_com;
 };
 
-enum class JointKind { Revolute, Prismatic, Fixed };
+/// Floating: a 6-DoF free joint (JointType::Free). Planar: motion in the plane normal to the
+/// axis, built as a prismatic joint along one in-plane direction u, one along w = axis x u and
+/// a revolute joint about the axis, the first two on massless bodies named after the joint.
+enum class JointKind { Revolute, Prismatic, Fixed, Floating, Planar };
 
 /// A joint: the child frame sits at xyz in the parent frame, rotated by R (columns: child axes
 /// in parent coordinates); the axis is in child coordinates.
@@ -101,8 +104,10 @@ class ModelBuilder {
   const std::vector<LinkSpec>& links() const { return links_; }
   const std::vector<JointSpec>& joints() const { return joints_; }
 
-  /// The model rooted at the one link without a parent joint, which is fixed to the world.
-  Model<double> build(const Vec3<double>& gravity) const {
+  /// The model rooted at the one link without a parent joint. That link is fixed to the world,
+  /// or with floating_base it is body 0, on a free joint named "floating_base" whose frame is
+  /// the root link's.
+  Model<double> build(const Vec3<double>& gravity, bool floating_base = false) const {
     const int nlinks = static_cast<int>(links_.size());
     std::vector<int> parent_joint(nlinks, -1);
     std::vector<std::vector<int>> child_joints(nlinks);
@@ -129,11 +134,15 @@ class ModelBuilder {
 
     Model<double> model;
     model.gravity = gravity;
-    const int visited = visit(model, child_joints, roots[0], -1, identity());
+    int root_body = -1;
+    if (floating_base) {
+      root_body = add_body(model, -1, identity(), JointType::Free, {0, 0, 0}, "floating_base",
+                           links_[roots[0]].name, link_inertia(links_[roots[0]]));
+    }
+    const int visited = visit(model, child_joints, roots[0], root_body, identity());
     if (visited != nlinks)
       throw ModelError("some links are not connected to the root link '" + links_[roots[0]].name +
                        "' (the tree has a loop)");
-    model.nq = model.nv = model.nbodies;
     return model;
   }
 
@@ -153,19 +162,46 @@ class ModelBuilder {
         if (body >= 0)
           model.I[body] = model.I[body] + apply_inertia_T(X_child_body, link_inertia(links_[c]));
         visited += visit(model, child_joints, c, body, X_child_body);
+      } else if (joint.kind == JointKind::Planar) {
+        const Vec3<double> n = unit_axis(joint);
+        const Vec3<double> u = in_plane_direction(n);
+        const Vec3<double> w = cross(n, u);
+        const int bu = add_body(model, body, X_child_body, JointType::Prismatic, u,
+                                joint.name + ":u", links_[c].name + ":u", {});
+        const int bw = add_body(model, bu, identity(), JointType::Prismatic, w,
+                                joint.name + ":w", links_[c].name + ":w", {});
+        const int b = add_body(model, bw, identity(), revolute_type(n), n, joint.name + ":rot",
+                               links_[c].name, link_inertia(links_[c]));
+        visited += visit(model, child_joints, c, b, identity());
       } else {
-        const int b = model.nbodies++;
-        model.parent.push_back(body);
-        model.X_tree.push_back(X_child_body);
-        add_joint_type(model, joint);
-        model.q_index.push_back(b);
-        model.body_name.push_back(links_[c].name);
-        model.joint_name.push_back(joint.name);
-        model.I.push_back(link_inertia(links_[c]));
+        const JointType type = joint.kind == JointKind::Floating  ? JointType::Free
+                               : joint.kind == JointKind::Prismatic ? JointType::Prismatic
+                                                                    : revolute_type(unit_axis(joint));
+        const Vec3<double> axis = joint.kind == JointKind::Floating ? Vec3<double>{0, 0, 0}
+                                                                    : unit_axis(joint);
+        const int b = add_body(model, body, X_child_body, type, axis, joint.name, links_[c].name,
+                               link_inertia(links_[c]));
         visited += visit(model, child_joints, c, b, identity());
       }
     }
     return visited;
+  }
+
+  static int add_body(Model<double>& model, int parent, const Xform<double>& X_tree,
+                      JointType type, const Vec3<double>& axis, const std::string& joint_name,
+                      const std::string& body_name, const RigidInertia<double>& inertia) {
+    model.parent.push_back(parent);
+    model.X_tree.push_back(X_tree);
+    model.joint_type.push_back(type);
+    model.joint_axis.push_back(axis);
+    model.q_index.push_back(model.nq);
+    model.v_index.push_back(model.nv);
+    model.nq += joint_nq(type);
+    model.nv += joint_nv(type);
+    model.body_name.push_back(body_name);
+    model.joint_name.push_back(joint_name);
+    model.I.push_back(inertia);
+    return model.nbodies++;
   }
 
   /// Orthonormal with determinant +1, to 1e-9 (URDF rotations come from rpy or quaternions).
@@ -192,24 +228,31 @@ class ModelBuilder {
     return it->second;
   }
 
-  static void add_joint_type(Model<double>& model, const JointSpec& joint) {
+  static Vec3<double> unit_axis(const JointSpec& joint) {
     const Vec3<double>& a = joint.axis;
     const double norm = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
     if (!(norm > 0) || !std::isfinite(norm))
       throw ModelError("joint '" + joint.name + "' has a zero or non-finite axis");
-    const Vec3<double> k = norm == 1 ? a : Vec3<double>{a.x / norm, a.y / norm, a.z / norm};
-    model.joint_axis.push_back(k);
-    if (joint.kind == JointKind::Prismatic) {
-      model.joint_type.push_back(JointType::Prismatic);
-    } else if (k.y == 0 && k.z == 0) {
-      model.joint_type.push_back(JointType::RevoluteX);
-    } else if (k.x == 0 && k.z == 0) {
-      model.joint_type.push_back(JointType::RevoluteY);
-    } else if (k.x == 0 && k.y == 0) {
-      model.joint_type.push_back(JointType::RevoluteZ);
-    } else {
-      model.joint_type.push_back(JointType::Revolute);
-    }
+    return norm == 1 ? a : Vec3<double>{a.x / norm, a.y / norm, a.z / norm};
+  }
+
+  static JointType revolute_type(const Vec3<double>& k) {
+    if (k.y == 0 && k.z == 0) return JointType::RevoluteX;
+    if (k.x == 0 && k.z == 0) return JointType::RevoluteY;
+    if (k.x == 0 && k.y == 0) return JointType::RevoluteZ;
+    return JointType::Revolute;
+  }
+
+  /// A unit vector normal to n: the coordinate axis least aligned with n, made orthogonal to
+  /// it (exactly x or y for n = +-z, and so on).
+  static Vec3<double> in_plane_direction(const Vec3<double>& n) {
+    const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+    const Vec3<double> e = ax <= ay && ax <= az ? Vec3<double>{1, 0, 0}
+                           : ay <= az           ? Vec3<double>{0, 1, 0}
+                                                : Vec3<double>{0, 0, 1};
+    const Vec3<double> u = e - scale(n, dot(n, e));
+    const double norm = std::sqrt(dot(u, u));
+    return norm == 1 ? u : scale(u, 1 / norm);
   }
 
   std::vector<LinkSpec> links_;

@@ -9,8 +9,8 @@
 
 namespace dyngen {
 
-/// Inverse dynamics: tau = M(q) qdd + C(q, qd) qd + g(q). Arrays are indexed by
-/// model.q_index; no allocation.
+/// Inverse dynamics: tau = M(q) qdd + C(q, qd) qd + g(q). q has model.nq entries, the others
+/// model.nv; no allocation.
 template <class S>
 void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<const S> qd,
           std::span<const S> qdd, std::span<S> tau) {
@@ -21,11 +21,11 @@ void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
   // f_i = I_i a_i + v_i x* I_i v_i
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Forward);
-    const int k = model.q_index[i];
+    const int k = model.v_index[i];
     const int p = model.parent[i];
-    ws.Xup[i] = joint_transform(model, i, q[k]);
-    const Motion<S> vJ = joint_motion(model, i, qd[k]);
-    const Motion<S> aJ = joint_motion(model, i, qdd[k]);
+    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
+    const Motion<S> vJ = joint_motion(model, i, &qd[k]);
+    const Motion<S> aJ = joint_motion(model, i, &qdd[k]);
     if (p < 0) {
       ws.v[i] = vJ;  // the base does not move, and vJ x vJ = 0
       ws.a[i] = apply_motion(ws.Xup[i], a0) + aJ;
@@ -39,7 +39,7 @@ void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
   // backward pass: tau_i = S^T f_i, f_p += Xup^T f_i
   for (int i = model.nbodies - 1; i >= 0; --i) {
     TraceHook<S>::enter(i, Pass::Backward);
-    tau[model.q_index[i]] = joint_project(model, i, ws.f[i]);
+    joint_project(model, i, ws.f[i], &tau[model.v_index[i]]);
     const int p = model.parent[i];
     if (p >= 0) ws.f[p] = ws.f[p] + apply_force_T(ws.Xup[i], ws.f[i]);
   }

@@ -290,4 +290,47 @@ ArticulatedInertia<S> operator+(const ArticulatedInertia<S>& a, const Articulate
   return {a.I + b.I, a.H + b.H, a.M + b.M};
 }
 
+
+template <class S>
+Motion<S> operator-(const Motion<S>& a, const Motion<S>& b) {
+  return {a.ang - b.ang, a.lin - b.lin};
+}
+
+/// x = A^-1 b for a positive definite articulated inertia: an LDL^T factorisation without
+/// pivoting (stable for positive definite A), one reciprocal per pivot, in a fixed order.
+/// The floating-base ABA solves with the root's articulated inertia (RBDA sec. 9.3).
+template <class S>
+Motion<S> solve(const ArticulatedInertia<S>& A, const Force<S>& b) {
+  // A as a dense symmetric 6x6 in [angular; linear] order; only the lower triangle is read
+  const S a[6][6] = {
+      {A.I.xx, A.I.xy, A.I.xz, A.H.xx, A.H.xy, A.H.xz},
+      {A.I.xy, A.I.yy, A.I.yz, A.H.yx, A.H.yy, A.H.yz},
+      {A.I.xz, A.I.yz, A.I.zz, A.H.zx, A.H.zy, A.H.zz},
+      {A.H.xx, A.H.yx, A.H.zx, A.M.xx, A.M.xy, A.M.xz},
+      {A.H.xy, A.H.yy, A.H.zy, A.M.xy, A.M.yy, A.M.yz},
+      {A.H.xz, A.H.yz, A.H.zz, A.M.xz, A.M.yz, A.M.zz}};
+  S L[6][6]{}, d[6]{}, inv_d[6]{};
+  for (int j = 0; j < 6; ++j) {
+    S LD[6]{};  // L_jk d_k
+    for (int k = 0; k < j; ++k) LD[k] = L[j][k] * d[k];
+    S djj = a[j][j];
+    for (int k = 0; k < j; ++k) djj = djj - L[j][k] * LD[k];
+    d[j] = djj;
+    inv_d[j] = S(1) / djj;
+    for (int i = j + 1; i < 6; ++i) {
+      S lij = a[i][j];
+      for (int k = 0; k < j; ++k) lij = lij - L[i][k] * LD[k];
+      L[i][j] = lij * inv_d[j];
+    }
+  }
+  // L y = b, then L^T x = D^-1 y
+  S x[6] = {b.ang.x, b.ang.y, b.ang.z, b.lin.x, b.lin.y, b.lin.z};
+  for (int i = 1; i < 6; ++i)
+    for (int k = 0; k < i; ++k) x[i] = x[i] - L[i][k] * x[k];
+  for (int i = 0; i < 6; ++i) x[i] = x[i] * inv_d[i];
+  for (int i = 4; i >= 0; --i)
+    for (int k = i + 1; k < 6; ++k) x[i] = x[i] - L[k][i] * x[k];
+  return {{x[0], x[1], x[2]}, {x[3], x[4], x[5]}};
+}
+
 }  // namespace dyngen

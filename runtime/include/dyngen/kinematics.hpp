@@ -1,0 +1,54 @@
+// Configuration kinematics for integrators: the time derivative of q, which differs from v
+// only at free joints (a quaternion has four entries and three rates), and the projection of
+// an integrated q back onto unit quaternions.
+#pragma once
+
+#include <cmath>
+#include <span>
+
+#include "dyngen/model.hpp"
+
+namespace dyngen {
+
+/// qdot = dq/dt at velocity v: v itself for 1-DoF joints; for a free joint the position rate
+/// R v_lin (R the rotation of its quaternion) and the quaternion rate 1/2 quat (0, w).
+template <class S>
+void configuration_rate(const Model<S>& model, std::span<const S> q, std::span<const S> v,
+                        std::span<S> qdot) {
+  for (int i = 0; i < model.nbodies; ++i) {
+    const S* qi = &q[model.q_index[i]];
+    const S* vi = &v[model.v_index[i]];
+    S* out = &qdot[model.q_index[i]];
+    if (model.joint_type[i] != JointType::Free) {
+      out[0] = vi[0];
+      continue;
+    }
+    const S &w = qi[3], &x = qi[4], &y = qi[5], &z = qi[6];
+    // the position rate R v: R's columns from the quaternion
+    const Mat3<S> R{1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
+                    2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+                    2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
+    const Vec3<S> p_rate = mul(R, Vec3<S>{vi[0], vi[1], vi[2]});
+    out[0] = p_rate.x, out[1] = p_rate.y, out[2] = p_rate.z;
+    // quat (0, w) with the angular velocity w in body coordinates
+    const S &wx = vi[3], &wy = vi[4], &wz = vi[5];
+    out[3] = S(0.5) * (-x * wx - y * wy - z * wz);
+    out[4] = S(0.5) * (w * wx + y * wz - z * wy);
+    out[5] = S(0.5) * (w * wy + z * wx - x * wz);
+    out[6] = S(0.5) * (w * wz + x * wy - y * wx);
+  }
+}
+
+/// Rescales each free joint's quaternion to unit length (after an integration step).
+template <class S>
+void normalize_configuration(const Model<S>& model, std::span<S> q) {
+  using std::sqrt;
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (model.joint_type[i] != JointType::Free) continue;
+    S* quat = &q[model.q_index[i] + 3];
+    const S norm = sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3]);
+    for (int k = 0; k < 4; ++k) quat[k] = quat[k] / norm;
+  }
+}
+
+}  // namespace dyngen

@@ -1,0 +1,186 @@
+// orocos-KDL against the runtime on every shared robot: inverse dynamics, the mass matrix and
+// forward dynamics at seeded random states, with a fixed and with a floating base. README.md
+// lists the modelling differences between the two libraries and how the test removes them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <ostream>
+#include <set>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "dyngen/dyngen.hpp"
+#include "kdl_peer.hpp"
+#include "robot.hpp"
+#include "test_support.hpp"
+
+namespace dyngen::test {
+
+void PrintTo(const RobotFile& robot, std::ostream* out) { *out << robot.name; }
+
+namespace kdl {
+namespace {
+
+constexpr int states_per_robot = 20;
+constexpr std::uint64_t seed = 20261121;
+constexpr double tolerance = 1e-9;
+
+enum Algorithm { Rnea, Crba, Aba };
+constexpr const char* algorithm_names[] = {"RNEA", "CRBA", "ABA"};
+enum Solver { Tree, Chain };
+constexpr const char* solver_names[] = {"tree", "chain"};
+
+std::span<const double> in(const Eigen::VectorXd& x) { return {x.data(), std::size_t(x.size())}; }
+std::span<double> out(Eigen::VectorXd& x) { return {x.data(), std::size_t(x.size())}; }
+
+/// ||x - reference|| / ||reference|| (Frobenius norm for matrices)
+double relative_error(const Eigen::MatrixXd& x, const Eigen::MatrixXd& reference) {
+  return (x - reference).norm() / reference.norm();
+}
+
+/// The largest relative error of one algorithm over the seeded random states (NaN if any is).
+double largest_error(Algorithm algorithm, const Model<double>& model, Dynamics& kdl) {
+  Workspace<double> ws(model);
+  Random rng(seed);
+  double largest = 0;
+  for (int n = 0; n < states_per_robot; ++n) {
+    const StatePair s = random_state_pair(model, kdl.joint_names(), rng);
+    double error = 0;
+    switch (algorithm) {
+      case Rnea: {
+        Eigen::VectorXd tau(model.nv);
+        rnea<double>(model, ws, in(s.q), in(s.v), in(s.a), out(tau));
+        error = relative_error(s.G.transpose() * tau, kdl.inverse(s.q_kdl, s.qd_kdl, s.qdd_kdl));
+        break;
+      }
+      case Crba: {
+        Eigen::VectorXd M(model.nv * model.nv);  // row-major, symmetric
+        crba<double>(model, ws, in(s.q), out(M));
+        const Eigen::MatrixXd M_dyngen = M.reshaped<Eigen::RowMajor>(model.nv, model.nv);
+        error = relative_error(s.G.transpose() * M_dyngen * s.G, kdl.mass_matrix(s.q_kdl));
+        break;
+      }
+      case Aba: {
+        Eigen::VectorXd a(model.nv);
+        aba<double>(model, ws, in(s.q), in(s.v), in(s.tau), out(a));
+        const Eigen::VectorXd qdd_kdl = kdl.forward(s.q_kdl, s.qd_kdl, s.G.transpose() * s.tau);
+        error = relative_error(a, s.G * qdd_kdl + s.Gdot_qd);
+        break;
+      }
+    }
+    largest = std::isnan(largest) || std::isnan(error) ? NAN : std::max(largest, error);
+  }
+  return largest;
+}
+
+/// One robot in both libraries, under the same load options (RobotFile's accept mimic joints
+/// as independent joints, which is what kdl_parser makes of them).
+struct Peer {
+  gen::Robot robot;
+  std::unique_ptr<Dynamics> tree, chain;  // chain: null where KDL's chain is not the robot
+};
+
+Peer make_peer(const RobotFile& file, gen::LoadOptions options, bool floating_base) {
+  options.floating_base = floating_base;
+  Peer peer{gen::load_robot(file.path, options), nullptr, nullptr};
+  const Model<double>& model = peer.robot.model;
+  const KDL::Tree tree = load_tree(file.path, peer.robot.locked, floating_base);
+  peer.tree = tree_dynamics(tree, model.gravity);
+  if (const auto chain = equivalent_chain(tree, model.body_name.back()))
+    peer.chain = chain_dynamics(*chain, model.gravity);
+  return peer;
+}
+
+struct Row {
+  std::string robot;
+  bool floating_base;
+  int nv;
+  std::optional<double> error[2][3];  // [Solver][Algorithm]
+};
+
+std::vector<Row>& table() {
+  static std::vector<Row> rows;
+  return rows;
+}
+
+void print_table() {
+  std::printf(
+      "\nKDL peer: largest ||x_dyngen - x_kdl|| / ||x_kdl|| over %d random states (limit %.0e)\n"
+      "tree:  TreeIdSolver_RNE; CRBA column by column from it, ABA = LLT solve of M (tau - h)\n"
+      "chain: ChainIdSolver_RNE, ChainDynParam::JntToMass, ChainFdSolver_RNE (serial robots)\n"
+      "ABA on romeo with its massless hands locked in both libraries\n\n",
+      states_per_robot, tolerance);
+  std::printf("%-16s %-8s %3s", "robot", "base", "nv");
+  for (const char* solver : solver_names)
+    for (const char* algorithm : algorithm_names) std::printf("  %5s %-4s", solver, algorithm);
+  std::printf("\n");
+  for (const Row& row : table()) {
+    std::printf("%-16s %-8s %3d", row.robot.c_str(), row.floating_base ? "floating" : "fixed",
+                row.nv);
+    for (const auto& by_solver : row.error)
+      for (const std::optional<double>& error : by_solver)
+        if (error) std::printf("  %10.2e", *error);
+        else std::printf("  %10s", "-");
+    std::printf("\n");
+  }
+}
+
+class KdlPeer : public testing::TestWithParam<RobotFile> {
+ public:
+  static void TearDownTestSuite() { print_table(); }
+
+ protected:
+  /// RNEA and CRBA on the whole robot, ABA under the robot's ABA options (locks in both).
+  void compare(bool floating_base) {
+    const RobotFile& file = GetParam();
+    Peer whole = make_peer(file, file.options, floating_base);
+    Peer for_aba = make_peer(file, file.aba_options, floating_base);
+    Row row{file.name, floating_base, whole.robot.model.nv, {}};
+    for (const Solver solver : {Tree, Chain})
+      for (const Algorithm algorithm : {Rnea, Crba, Aba}) {
+        Peer& peer = algorithm == Aba ? for_aba : whole;
+        Dynamics* kdl = (solver == Tree ? peer.tree : peer.chain).get();
+        if (!kdl) continue;
+        const double error = largest_error(algorithm, peer.robot.model, *kdl);
+        row.error[solver][algorithm] = error;
+        EXPECT_LE(error, tolerance) << solver_names[solver] << " " << algorithm_names[algorithm];
+      }
+    table().push_back(row);
+  }
+};
+
+// kdl_parser keeps every movable joint (it would turn a floating or planar joint into a fixed
+// one) and leaves KDL's joint inertia, damping and stiffness at zero: dyngen has none of them,
+// and KDL's RNEA adds inertia * qdd to each joint's torque.
+TEST_P(KdlPeer, JointsAsInUrdf) {
+  const RobotFile& file = GetParam();
+  const Model<double> model = gen::load_robot(file.path, file.options).model;
+  const KDL::Tree tree = load_tree(file.path, {}, false);
+  std::set<std::string> kdl_joints;
+  for (const auto& [name, element] : tree.getSegments()) {
+    const KDL::Joint& joint = GetTreeElementSegment(element).getJoint();
+    if (joint.getType() == KDL::Joint::Fixed) continue;
+    kdl_joints.insert(joint.getName());
+    EXPECT_EQ(joint.getInertia(), 0) << joint.getName();
+    EXPECT_EQ(joint.getDamping(), 0) << joint.getName();
+    EXPECT_EQ(joint.getStiffness(), 0) << joint.getName();
+  }
+  EXPECT_EQ(kdl_joints, std::set<std::string>(model.joint_name.begin(), model.joint_name.end()));
+}
+
+TEST_P(KdlPeer, FixedBase) { compare(false); }
+
+TEST_P(KdlPeer, FloatingBase) { compare(true); }
+
+INSTANTIATE_TEST_SUITE_P(Robots, KdlPeer, testing::ValuesIn(robot_files()),
+                         [](const testing::TestParamInfo<RobotFile>& info) {
+                           return info.param.name;
+                         });
+
+}  // namespace
+}  // namespace kdl
+}  // namespace dyngen::test

@@ -1,0 +1,102 @@
+// MuJoCo 2.2.2 as a peer of the runtime: a shared robot URDF rewritten so that MuJoCo's URDF
+// importer builds the same rigid-body model as dyngen's loader, loaded with every force that
+// dyngen does not model switched off, and MuJoCo's dynamics mapped into dyngen's coordinates.
+// README.md lists the modelling differences this removes.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "dyngen/model.hpp"
+
+namespace dyngen::test::mujoco_peer {
+
+/// The free joint that MuJoCo gets for a floating base, named like dyngen's.
+inline constexpr const char* floating_joint = "floating_base";
+
+/// A URDF rewritten for MuJoCo's importer.
+struct MujocoUrdf {
+  std::string text;
+  /// Principal moments of the links (by name) that break the triangle inequality A + B >= C:
+  /// MuJoCo refuses such a link unless balanceinertia replaces its moments by their mean.
+  std::map<std::string, std::array<double, 3>> unphysical;
+};
+
+/// The file at path rewritten for MuJoCo: without <visual> and <collision> (their meshes are not
+/// here, and collision geometry would give links without <inertial> a mass); each inertia
+/// diagonalised here, exactly to rounding, its principal axes moved into the <inertial> origin
+/// (MuJoCo's own diagonalisation is accurate to only about 1e-8); the locked joints fixed; with
+/// floating_base, a free joint from a new world link to the root link; and MuJoCo compiler
+/// options that keep every link a body of its own with the file's inertia.
+MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& locked,
+                       bool floating_base);
+
+/// MuJoCo's model of a robot that dyngen loaded, and its dynamics in dyngen's coordinates.
+///
+/// dyngen's and MuJoCo's q, v and tau differ only in order, except on a free joint: MuJoCo's
+/// linear velocity is in world coordinates, dyngen's in body coordinates, so with R the body's
+/// rotation and T = blockdiag(R, 1), v_mujoco = T v (the same map for the force entries, which
+/// are dual to them; T is orthogonal). dyngen's linear acceleration is the derivative of the
+/// body-coordinate velocity: a_mujoco = T a + [R (w x v_lin); 0].
+class MujocoRobot {
+ public:
+  /// Loads the URDF at path as dyngen loaded it into `model`, with `locked` joints locked and
+  /// floating_base as given. Throws std::runtime_error when MuJoCo refuses the file or its
+  /// joints do not match the model's.
+  MujocoRobot(const std::string& path, const Model<double>& model,
+              const std::vector<std::string>& locked, bool floating_base);
+
+  const mjModel* mj() const { return m_.get(); }
+
+  /// MuJoCo's body of dyngen body i.
+  int body(int i) const { return m_->jnt_bodyid[joint_[i]]; }
+
+  /// MuJoCo's inertia of dyngen body i: the sum over the MuJoCo bodies welded to body(i) (its
+  /// links on fixed joints), about its origin in its coordinates, as a dense 6x6 matrix.
+  Eigen::Matrix<double, 6, 6> inertia(int i) const;
+
+  /// The unphysical links: MuJoCo's balanced principal moments, which were replaced with the
+  /// file's.
+  const std::map<std::string, std::array<double, 3>>& balanced() const { return balanced_; }
+
+  /// Mass matrix, row-major nv x nv, from mj_fwdPosition.
+  std::vector<double> crba(std::span<const double> q);
+
+  /// Inverse dynamics, from mj_rne with accelerations.
+  std::vector<double> rnea(std::span<const double> q, std::span<const double> v,
+                           std::span<const double> a);
+
+  /// Forward dynamics, from mj_forward with tau as qfrc_applied.
+  std::vector<double> aba(std::span<const double> q, std::span<const double> v,
+                          std::span<const double> tau);
+
+ private:
+  struct ModelDeleter {
+    void operator()(mjModel* m) const { mj_deleteModel(m); }
+  };
+  struct DataDeleter {
+    void operator()(mjData* d) const { mj_deleteData(d); }
+  };
+
+  /// Sets qpos and qvel; returns the orthogonal A with v_mujoco = A v (permutation and T).
+  Eigen::MatrixXd set_state(std::span<const double> q, std::span<const double> v);
+
+  /// The acceleration of each free joint's world-coordinate linear velocity when dyngen's
+  /// acceleration is zero, in MuJoCo's dof order.
+  Eigen::VectorXd free_joint_bias(std::span<const double> q, std::span<const double> v) const;
+
+  Model<double> model_;
+  std::unique_ptr<mjModel, ModelDeleter> m_;
+  std::unique_ptr<mjData, DataDeleter> d_;
+  std::vector<int> joint_;  // [nbodies] MuJoCo joint of each dyngen body
+  std::map<std::string, std::array<double, 3>> balanced_;
+};
+
+}  // namespace dyngen::test::mujoco_peer

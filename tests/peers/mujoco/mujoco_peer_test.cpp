@@ -1,0 +1,220 @@
+// The runtime against MuJoCo 2.2.2 on every shared robot, with a fixed and with a floating base:
+// the imported models agree body by body, and the mass matrix (CRBA), inverse dynamics (RNEA)
+// and forward dynamics (ABA) agree to a norm-wise relative error of 1e-9 at seeded random
+// states. The largest errors are printed as a table when the program ends.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dyngen/dyngen.hpp"
+#include "mujoco_peer.hpp"
+#include "robot.hpp"
+#include "test_support.hpp"
+
+namespace dyngen::test {
+namespace {
+
+using mujoco_peer::MujocoRobot;
+
+constexpr double tolerance = 1e-9;
+constexpr int samples = 20;
+
+struct Case {
+  RobotFile robot;
+  bool floating_base;
+};
+
+std::string case_name(const Case& c) {
+  return c.robot.name + (c.floating_base ? "_floating" : "_fixed");
+}
+
+std::vector<Case> cases() {
+  std::vector<Case> all;
+  for (const bool floating_base : {false, true})
+    for (const RobotFile& robot : robot_files()) all.push_back({robot, floating_base});
+  return all;
+}
+
+/// The robot's ABA options (romeo's massless hands locked: MuJoCo refuses moving bodies without
+/// mass, so every algorithm is compared on that model), mimic joints as independent joints as
+/// MuJoCo's importer makes them, and the base.
+gen::Robot load(const Case& c) {
+  gen::LoadOptions options = c.robot.aba_options;
+  options.mimic_independent = true;
+  options.floating_base = c.floating_base;
+  return gen::load_robot(c.robot.path, options);
+}
+
+/// ||x - reference|| / ||reference||, Euclidean (Frobenius for matrices).
+double relative_error(const std::vector<double>& x, const std::vector<double>& reference) {
+  return (to_eigen(x) - to_eigen(reference)).norm() / to_eigen(reference).norm();
+}
+
+double relative_error(const RigidInertia<double>& I, const RigidInertia<double>& reference) {
+  return (dense(I) - dense(reference)).norm() / dense(reference).norm();
+}
+
+// ---- the table of largest errors, printed when the program ends ---------------------------
+
+struct Row {
+  std::string name;
+  int nv;
+  double crba, rnea, aba;
+};
+
+std::vector<Row>& table() {
+  static std::vector<Row> rows;
+  return rows;
+}
+
+class PrintTable : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    if (table().empty()) return;
+    std::printf("\nLargest relative error vs MuJoCo %s over %d states (tolerance %.0e):\n",
+                mj_versionString(), samples, tolerance);
+    std::printf("%-26s %4s %10s %10s %10s\n", "robot", "nv", "CRBA", "RNEA", "ABA");
+    for (const Row& r : table())
+      std::printf("%-26s %4d %10.2e %10.2e %10.2e\n", r.name.c_str(), r.nv, r.crba, r.rnea, r.aba);
+  }
+};
+
+[[maybe_unused]] const auto* const print_table =
+    ::testing::AddGlobalTestEnvironment(new PrintTable);
+
+// ---- tests ---------------------------------------------------------------------------------
+
+class MujocoPeer : public ::testing::TestWithParam<Case> {};
+
+// MuJoCo's importer builds dyngen's model: the same joints, tree, joint frames and axes, and
+// the same inertias except where balanceinertia changed a link that breaks the triangle
+// inequality (those bodies keep their mass and centre of mass; MujocoRobot restores them).
+TEST_P(MujocoPeer, ImportMatchesModel) {
+  const gen::Robot robot = load(GetParam());
+  const Model<double>& model = robot.model;
+  const MujocoRobot peer(robot.path, model, robot.locked, GetParam().floating_base);
+  const mjModel* m = peer.mj();
+
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(m->opt.gravity[k], dense(model.gravity)(k));
+  std::set<std::string> unphysical;
+  for (int i = 0; i < model.nbodies; ++i) {
+    SCOPED_TRACE("joint " + model.joint_name[i]);
+    const int b = peer.body(i);
+    EXPECT_EQ(m->body_parentid[b], model.parent[i] < 0 ? 0 : peer.body(model.parent[i]));
+
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R;
+    mju_quat2Mat(R.data(), m->body_quat + 4 * b);
+    const Eigen::Vector3d r = Eigen::Map<const Eigen::Vector3d>(m->body_pos + 3 * b);
+    EXPECT_LT((R - dense(model.X_tree[i].E).transpose()).norm(), 1e-12);
+    EXPECT_LT((r - dense(model.X_tree[i].r)).norm(), 1e-12);
+    if (model.joint_type[i] != JointType::Free) {
+      const int j = m->body_jntadr[b];
+      const Eigen::Vector3d axis = Eigen::Map<const Eigen::Vector3d>(m->jnt_axis + 3 * j);
+      EXPECT_LT((axis - dense(model.joint_axis[i])).norm(), 1e-12);
+      EXPECT_EQ(m->qpos0[m->jnt_qposadr[j]], 0.0);
+    }
+
+    const RigidInertia<double>& imported = peer.imported_inertia()[i];
+    const double error = relative_error(imported, model.I[i]);
+    if (error > 1e-12) {
+      unphysical.insert(model.joint_name[i]);
+      std::printf("%s: %s: balanceinertia changed the inertia by %.2e (relative)\n",
+                  case_name(GetParam()).c_str(), model.joint_name[i].c_str(), error);
+      EXPECT_NEAR(imported.m, model.I[i].m, 1e-12 * model.I[i].m);
+      EXPECT_LT((dense(imported.h) - dense(model.I[i].h)).norm(), 1e-12 * model.I[i].m);
+    }
+  }
+  EXPECT_EQ(unphysical, peer.replaced());
+}
+
+TEST_P(MujocoPeer, DynamicsMatch) {
+  const gen::Robot robot = load(GetParam());
+  const Model<double>& model = robot.model;
+  MujocoRobot peer(robot.path, model, robot.locked, GetParam().floating_base);
+  Workspace<double> ws(model);
+  const int nv = model.nv;
+  std::vector<double> M(nv * nv), tau(nv), qdd(nv);
+
+  Row row{case_name(GetParam()), nv, 0, 0, 0};
+  Random rng(20261121);
+  for (int sample = 0; sample < samples; ++sample) {
+    const State s = random_state(model, rng);
+    crba<double>(model, ws, s.q, M);
+    rnea<double>(model, ws, s.q, s.qd, s.qdd, tau);
+    aba<double>(model, ws, s.q, s.qd, s.tau, qdd);
+    row.crba = std::max(row.crba, relative_error(M, peer.crba(s.q)));
+    row.rnea = std::max(row.rnea, relative_error(tau, peer.rnea(s.q, s.qd, s.qdd)));
+    row.aba = std::max(row.aba, relative_error(qdd, peer.aba(s.q, s.qd, s.tau)));
+  }
+  EXPECT_LE(row.crba, tolerance);
+  EXPECT_LE(row.rnea, tolerance);
+  EXPECT_LE(row.aba, tolerance);
+  table().push_back(row);
+}
+
+INSTANTIATE_TEST_SUITE_P(Robots, MujocoPeer, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return case_name(info.param);
+                         });
+
+// romeo's hands and fingers have no mass. MuJoCo refuses moving bodies without mass, so the
+// comparison above locks them; that loses nothing: on the full model their rows of M and tau
+// are zero and the other entries are those of the locked model, whatever the hands do.
+TEST(MujocoPeerRomeo, MasslessHandsRefusedByMujocoAndLockingThemLosesNothing) {
+  const RobotFile romeo = [] {
+    for (const RobotFile& r : robot_files())
+      if (r.name == "romeo") return r;
+    throw std::runtime_error("romeo.urdf not found");
+  }();
+  gen::LoadOptions options;
+  options.mimic_independent = true;
+  const gen::Robot full = gen::load_robot(romeo.path, options);
+  try {
+    MujocoRobot peer(full.path, full.model, {}, false);
+    ADD_FAILURE() << "MuJoCo now loads romeo's massless hands: compare the full model";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("mass and inertia of moving bodies"), std::string::npos)
+        << e.what();
+  }
+
+  const gen::Robot locked = load({romeo, false});
+  ASSERT_FALSE(locked.locked.empty());
+  const Model<double>& f = full.model;
+  const Model<double>& l = locked.model;
+  std::vector<int> kept(f.nv, -1);  // index in the locked model of each entry of the full one
+  for (int i = 0; i < f.nbodies; ++i) {
+    const auto it = std::ranges::find(l.joint_name, f.joint_name[i]);
+    if (it != l.joint_name.end()) kept[f.v_index[i]] = l.v_index[it - l.joint_name.begin()];
+  }
+  Workspace<double> wf(f), wl(l);
+  std::vector<double> Mf(f.nv * f.nv), Ml(l.nv * l.nv), tf(f.nv), tl(l.nv);
+  Random rng(20261121);
+  double largest = 0;  // difference
+  for (int sample = 0; sample < samples; ++sample) {
+    const State s = random_state(f, rng);
+    State sl{std::vector<double>(l.nq), std::vector<double>(l.nv), std::vector<double>(l.nv), {}};
+    for (int k = 0; k < f.nv; ++k)
+      if (kept[k] >= 0) sl.q[kept[k]] = s.q[k], sl.qd[kept[k]] = s.qd[k], sl.qdd[kept[k]] = s.qdd[k];
+    crba<double>(f, wf, s.q, Mf);
+    crba<double>(l, wl, sl.q, Ml);
+    rnea<double>(f, wf, s.q, s.qd, s.qdd, tf);
+    rnea<double>(l, wl, sl.q, sl.qd, sl.qdd, tl);
+    for (int a = 0; a < f.nv; ++a) {
+      largest = std::max(largest, std::abs(tf[a] - (kept[a] < 0 ? 0.0 : tl[kept[a]])));
+      for (int b = 0; b < f.nv; ++b)
+        largest = std::max(largest, std::abs(Mf[a * f.nv + b] - (kept[a] < 0 || kept[b] < 0
+                                                                      ? 0.0
+                                                                      : Ml[kept[a] * l.nv + kept[b]])));
+    }
+  }
+  EXPECT_EQ(largest, 0.0);
+}
+
+}  // namespace
+}  // namespace dyngen::test
