@@ -122,9 +122,10 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   for (int i = 0; i < model.nbodies; ++i)
     if (model.joint_type[i] == JointType::Free)
       free_joints += fmt::format(
-          "\n///               free joint '{}': q[{}..{}] = position, then unit quaternion w, x, y, "
-          "z;\n///               v[{}..{}] = linear, then angular velocity, both in the child "
-          "body's\n///               frame (tau alike: force, then moment)",
+          "\n///               free joint '{}': q[{}..{}] = position of the body in its parent's "
+          "frame, then\n///               its unit quaternion w, x, y, z; v[{}..{}] = linear, "
+          "then angular\n///               velocity in the body's own frame (tau alike: force, "
+          "then moment)",
           model.joint_name[i], model.q_index[i], model.q_index[i] + 6, model.v_index[i],
           model.v_index[i] + 5);
   const Vec3<double>& g = model.gravity;

@@ -129,7 +129,7 @@ int eval_main(int argc, char** argv) {
   try {
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
-    fmt::print("{}\n", evaluate(robot.model, read_states(states)));
+    fmt::print("{}\n", evaluate(robot.model, read_states(states)).dump(2));
   } catch (const InputError& e) {
     fmt::print(stderr, "dyngen eval: error: {}\n", e.what());
     return 1;
@@ -184,7 +184,8 @@ int main(int argc, char** argv) {
     options.options_text += flags.text();
 
     if (!quiet) {
-      fmt::print("robot '{}': {} joints in {} bodies", robot.name, robot.model.nv, robot.model.nbodies);
+      fmt::print("robot '{}': {} degrees of freedom in {} bodies", robot.name, robot.model.nv,
+                 robot.model.nbodies);
       if (!robot.locked.empty()) fmt::print(", {} joints locked", robot.locked.size());
       fmt::print("\ntracing {} ({}) ...\n", algorithm_list, scalar);
       std::fflush(stdout);

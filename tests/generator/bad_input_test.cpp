@@ -1,9 +1,6 @@
 // Bad input (DESIGN.md, "Errors and warnings"): every error names the file, the element and the
 // problem, through the library and through the dyngen command, which exits non-zero and writes
 // nothing. Imperfect real-world URDFs load with warnings instead.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -34,29 +31,9 @@ const std::string models = DYNGEN_TEST_MODELS;
 
 using Scratch = dyngen::test::ScratchTest;
 
-struct CliResult {
-  int status;  // exit status, -1 if dyngen did not exit normally (a crash)
-  std::string out, err;
-};
-
-std::string shell_quoted(const std::string& s) {
-  std::string out = "'";
-  for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-/// Runs the built dyngen; its stdout and stderr go to files in `scratch`.
-CliResult run_dyngen(const std::vector<std::string>& args, const fs::path& scratch) {
-  std::string command = shell_quoted(DYNGEN_EXECUTABLE);
-  for (const std::string& a : args) command += " " + shell_quoted(a);
-  const fs::path out = scratch / "stdout.txt", err = scratch / "stderr.txt";
-  command += " >" + shell_quoted(out) + " 2>" + shell_quoted(err);
-  const int raw = std::system(command.c_str());
-  CliResult r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(out), read(err)};
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
+using dyngen::test::CliResult;
+using dyngen::test::run_dyngen;
+using dyngen::test::independent_mimics;
 
 /// The options of the command line that the library takes too.
 LoadOptions load_options(const std::vector<std::string>& options) {
@@ -248,7 +225,7 @@ const std::set<std::string> romeo_hand_joints = {
     "RFinger31", "RFinger32", "RFinger33", "RThumb1",   "RThumb2",   "RThumb3"};
 
 TEST(Romeo, AbaErrorListsExactlyTheHandJointsAndHowToLockThem) {
-  const std::string message = library_error(models + "/romeo.urdf", {});
+  const std::string message = library_error(models + "/romeo.urdf", independent_mimics());
   // the list is the first line, after "divide by zero): "
   const std::size_t from = message.find("): "), to = message.find(".\n");
   ASSERT_NE(from, std::string::npos) << message;
@@ -278,7 +255,7 @@ TEST(Romeo, LockMasslessLocksTheHandJointsAndAbaGenerates) {
 }
 
 TEST(Romeo, RneaAndCrbaAloneGenerateWithEveryJoint) {
-  const Robot robot = load_robot(models + "/romeo.urdf", {.mimic_independent = true});
+  const Robot robot = load_robot(models + "/romeo.urdf", independent_mimics());
   EXPECT_EQ(robot.model.nv, 55);
   GenerateOptions options;
   options.name = "romeo";
@@ -316,7 +293,7 @@ const std::vector<std::vector<std::string>> imperfect_warnings = {
 
 TEST(Warnings, ImperfectUrdfLoadsWithOneWarningPerOddity) {
   const std::string path = bad + "/imperfect.urdf";
-  const Robot robot = load_robot(path, {.mimic_independent = true});
+  const Robot robot = load_robot(path, independent_mimics());
   EXPECT_EQ(robot.model.nv, 3) << "the mimic joint is an independent joint";
   EXPECT_EQ(robot.warnings.size(), imperfect_warnings.size());
   for (const std::string& w : robot.warnings) EXPECT_EQ(w.rfind(path + ": ", 0), 0u) << w;

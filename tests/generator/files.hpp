@@ -1,9 +1,12 @@
-// File helpers shared by the generator tests: reading files, listing directories, and a
-// scratch directory per test process (ctest runs each test in its own process).
+// File helpers shared by the generator tests: reading files, listing directories, a scratch
+// directory per test process (ctest runs each test in its own process), and running the built
+// dyngen command.
 #pragma once
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +16,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "robot.hpp"
 
 namespace dyngen::test {
 
@@ -52,5 +57,50 @@ class ScratchTest : public ::testing::Test {
   void TearDown() override { std::filesystem::remove_all(dir); }
   std::filesystem::path dir;
 };
+
+/// Load options accepting mimic joints (panda, pr2, baxter and romeo have them).
+inline gen::LoadOptions independent_mimics() {
+  gen::LoadOptions options;
+  options.mimic_independent = true;
+  return options;
+}
+
+inline gen::LoadOptions floating_base() {
+  gen::LoadOptions options;
+  options.floating_base = true;
+  return options;
+}
+
+struct CliResult {
+  int status;  // exit status, -1 if dyngen did not exit normally (a crash)
+  std::string out, err;
+};
+
+inline std::string shell_quoted(const std::string& s) {
+  std::string out = "'";
+  for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+/// Runs the built dyngen (DYNGEN_EXECUTABLE); stdin from `input` if not empty; its stdout and
+/// stderr go to files in `scratch`.
+inline CliResult run_dyngen(const std::vector<std::string>& args,
+                            const std::filesystem::path& scratch, const std::string& input = "") {
+  std::string command = shell_quoted(DYNGEN_EXECUTABLE);
+  for (const std::string& a : args) command += " " + shell_quoted(a);
+  const std::filesystem::path out = scratch / "stdout.txt", err = scratch / "stderr.txt",
+                              in = scratch / "stdin.txt";
+  if (!input.empty()) {
+    std::ofstream(in) << input;
+    command += " <" + shell_quoted(in);
+  }
+  command += " >" + shell_quoted(out) + " 2>" + shell_quoted(err);
+  const int raw = std::system(command.c_str());
+  CliResult r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(out), read(err)};
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  std::filesystem::remove(in);
+  return r;
+}
 
 }  // namespace dyngen::test

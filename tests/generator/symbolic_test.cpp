@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "emit.hpp"
+#include "files.hpp"
 #include "robot.hpp"
 #include "symbolic.hpp"
 #include "trace.hpp"
@@ -385,12 +386,10 @@ void expect_traces_agree(const Model<double>& model, Algorithm algorithm) {
   }
 }
 
-/// panda's second finger mimics the first
-const LoadOptions mimic_independent{.mimic_independent = true};
 
 TEST_P(Traced, SimplifiedTraceComputesTheRuntimeBits) {
   const TraceCase& c = GetParam();
-  const Robot r = load_robot(std::string(DYNGEN_TEST_MODELS) + "/" + c.robot, mimic_independent);
+  const Robot r = load_robot(std::string(DYNGEN_TEST_MODELS) + "/" + c.robot, dyngen::test::independent_mimics());
   if (c.single) expect_traces_agree<float>(r.model, c.algorithm);
   else expect_traces_agree<double>(r.model, c.algorithm);
 }
@@ -431,7 +430,7 @@ void expect_fully_simplified(const Graph<T>& g) {
 
 TEST_P(Traced, SimplifiedTraceHasNothingLeftToRewrite) {
   const TraceCase& c = GetParam();
-  const Robot r = load_robot(std::string(DYNGEN_TEST_MODELS) + "/" + c.robot, mimic_independent);
+  const Robot r = load_robot(std::string(DYNGEN_TEST_MODELS) + "/" + c.robot, dyngen::test::independent_mimics());
   if (c.single) expect_fully_simplified(trace<float>(c.algorithm, r.model).graph);
   else expect_fully_simplified(trace<double>(c.algorithm, r.model).graph);
 }

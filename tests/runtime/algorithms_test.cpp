@@ -130,6 +130,9 @@ std::vector<Case> cases() {
     }
   all.push_back(
       {"planar5", [] { return gen::load_robot(test::model_path("planar5.yaml")).model; }, 5});
+  all.push_back({"all_joints", [] {
+                   return gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
+                 }, 6});
   for (const test::RobotFile& robot : test::robot_files()) {
     all.push_back({robot.name, [=] { return test::load_for_aba(robot); }, 7});
     all.push_back({robot.name + "_floating", [=] {

@@ -96,6 +96,9 @@ std::vector<Case> cases() {
   }
   all.push_back(
       {"planar5", [] { return gen::load_robot(test::model_path("planar5.yaml")).model; }});
+  all.push_back({"all_joints", [] {
+                   return gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
+                 }});
   all.push_back({"planar_chain_12", [] { return test::make_random_chain(12, 31, true); }});
   all.push_back({"spatial_chain_12", [] { return test::make_random_chain(12, 32, false); }});
   return all;
@@ -130,6 +133,25 @@ TEST_P(Physics, KineticEnergyIsHalfQdTransposeMQd) {
   }
   report("kinetic energy error / (n eps |qd|^T |M| |qd|)", worst);
   EXPECT_LE(worst, 4.0);
+}
+
+TEST_P(Physics, RuntimeEnergiesMatchWorldKinematics) {
+  const Model<double> model = GetParam().make();
+  Workspace<double> ws(model);
+  Energy energy(model);
+  test::Random rng(44);
+  double worst = 0;
+  for (int k = 0; k < 20; ++k) {
+    const test::State s = test::random_state(model, rng);
+    forward_kinematics<double>(model, ws, s.q, s.qd);
+    const double T = kinetic_energy(model, ws), V = potential_energy(model, ws);
+    const double T_ref = energy.kinetic(test::to_eigen(s.q), test::to_eigen(s.qd));
+    const double V_ref = energy.potential(test::to_eigen(s.q));
+    worst = std::max(worst, (std::abs(T - T_ref) + std::abs(V - V_ref)) /
+                                (model.nbodies * 64 * eps * (std::abs(T_ref) + std::abs(V_ref))));
+  }
+  report("runtime energies vs world kinematics / (64 n eps (|T| + |V|))", worst);
+  EXPECT_LE(worst, 1.0);
 }
 
 // Finite differences below (Pinocchio's choice, STYLE.md B4): central differences with

@@ -1,12 +1,14 @@
-// Configuration kinematics for integrators: the time derivative of q, which differs from v
-// only at free joints (a quaternion has four entries and three rates), and the projection of
-// an integrated q back onto unit quaternions.
+// Kinematics for integrators and for checking them: the time derivative of q, which differs
+// from v only at free joints (a quaternion has four entries and three rates), the projection of
+// an integrated q back onto unit quaternions, body poses and velocities, and the energies and
+// momentum that a simulation should conserve.
 #pragma once
 
 #include <cmath>
 #include <span>
 
-#include "dyngen/model.hpp"
+#include "dyngen/joint.hpp"
+#include "dyngen/workspace.hpp"
 
 namespace dyngen {
 
@@ -49,6 +51,53 @@ void normalize_configuration(const Model<S>& model, std::span<S> q) {
     const S norm = sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3]);
     for (int k = 0; k < 4; ++k) quat[k] = quat[k] / norm;
   }
+}
+
+/// Body poses ws.X0 (base to body) and velocities ws.v (body coordinates) at q, v.
+template <class S>
+void forward_kinematics(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
+                        std::span<const S> v) {
+  for (int i = 0; i < model.nbodies; ++i) {
+    const int p = model.parent[i];
+    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
+    const Motion<S> vJ = joint_motion(model, i, &v[model.v_index[i]]);
+    ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
+    ws.v[i] = p < 0 ? vJ : apply_motion(ws.Xup[i], ws.v[p]) + vJ;
+  }
+}
+
+/// Sum over bodies of 1/2 v_i . I_i v_i, after forward_kinematics.
+template <class S>
+S kinetic_energy(const Model<S>& model, const Workspace<S>& ws) {
+  S T{};
+  for (int i = 0; i < model.nbodies; ++i) {
+    const Force<S> h = mul(model.I[i], ws.v[i]);
+    T = T + S(0.5) * (dot(ws.v[i].ang, h.ang) + dot(ws.v[i].lin, h.lin));
+  }
+  return T;
+}
+
+/// -sum over bodies of m_i gravity . c_i (zero at the base origin), after forward_kinematics:
+/// m c = m r + E^T h in base coordinates.
+template <class S>
+S potential_energy(const Model<S>& model, const Workspace<S>& ws) {
+  S V{};
+  for (int i = 0; i < model.nbodies; ++i) {
+    const Xform<S>& X = ws.X0[i];
+    const Vec3<S> mc = scale(X.r, model.I[i].m) + mul_T(X.E, model.I[i].h);
+    V = V - dot(model.gravity, mc);
+  }
+  return V;
+}
+
+/// Spatial momentum of all bodies in base coordinates, [angular about the base origin;
+/// linear], after forward_kinematics.
+template <class S>
+Force<S> momentum(const Model<S>& model, const Workspace<S>& ws) {
+  Force<S> total{};
+  for (int i = 0; i < model.nbodies; ++i)
+    total = total + apply_force_T(ws.X0[i], mul(model.I[i], ws.v[i]));
+  return total;
 }
 
 }  // namespace dyngen

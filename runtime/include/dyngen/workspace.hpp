@@ -10,11 +10,12 @@ namespace dyngen {
 template <class S>
 struct Workspace {
   explicit Workspace(const Model<S>& model)
-      : Xup(model.nbodies), v(model.nbodies), a(model.nbodies), c(model.nbodies),
+      : Xup(model.nbodies), X0(model.nbodies), v(model.nbodies), a(model.nbodies), c(model.nbodies),
         f(model.nbodies), Ic(model.nbodies), IA(model.nbodies), pA(model.nbodies),
         U(model.nbodies), D(model.nbodies), u(model.nbodies) {}
 
   std::vector<Xform<S>> Xup;              // [nbodies] parent to body transform
+  std::vector<Xform<S>> X0;               // [nbodies] base to body (forward_kinematics)
   std::vector<Motion<S>> v;               // [nbodies] body velocity
   std::vector<Motion<S>> a;               // [nbodies] body acceleration (gravity included)
   std::vector<Motion<S>> c;               // [nbodies] velocity-product acceleration (ABA)

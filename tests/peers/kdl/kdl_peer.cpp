@@ -1,5 +1,7 @@
 #include "kdl_peer.hpp"
 
+#include <tinyxml2.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -13,7 +15,6 @@
 #include <numbers>
 #include <set>
 #include <stdexcept>
-#include <tinyxml2.h>
 
 namespace dyngen::test::kdl {
 
@@ -51,14 +52,15 @@ KDL::JntArray jnt(const Eigen::VectorXd& x) {
 }
 
 void check(int error, const char* what) {
-  if (error < 0) throw std::runtime_error(std::string(what) + " failed with KDL error " +
-                                          std::to_string(error));
+  if (error < 0)
+    throw std::runtime_error(std::string(what) + " failed with KDL error " + std::to_string(error));
 }
 
 class TreeDynamics final : public Dynamics {
  public:
   TreeDynamics(const KDL::Tree& tree, const Vec3<double>& g)
-      : tree_(tree), rne_(tree_, KDL::Vector(g.x, g.y, g.z)),
+      : tree_(tree),
+        rne_(tree_, KDL::Vector(g.x, g.y, g.z)),
         rne_no_gravity_(tree_, KDL::Vector::Zero()) {
     names_.resize(tree_.getNrOfJoints());
     for (const auto& [name, element] : tree_.getSegments()) {
@@ -95,8 +97,7 @@ class TreeDynamics final : public Dynamics {
   static Eigen::VectorXd inverse(KDL::TreeIdSolver_RNE& rne, const Eigen::VectorXd& q,
                                  const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd) {
     KDL::JntArray tau(static_cast<unsigned>(q.size()));
-    check(rne.CartToJnt(jnt(q), jnt(qd), jnt(qdd), KDL::WrenchMap{}, tau),
-          "TreeIdSolver_RNE");
+    check(rne.CartToJnt(jnt(q), jnt(qd), jnt(qdd), KDL::WrenchMap{}, tau), "TreeIdSolver_RNE");
     return tau.data;
   }
 
@@ -107,8 +108,10 @@ class TreeDynamics final : public Dynamics {
 class ChainDynamics final : public Dynamics {
  public:
   ChainDynamics(const KDL::Chain& chain, const Vec3<double>& g)
-      : chain_(chain), no_wrenches_(chain_.getNrOfSegments(), KDL::Wrench::Zero()),
-        id_(chain_, KDL::Vector(g.x, g.y, g.z)), param_(chain_, KDL::Vector(g.x, g.y, g.z)),
+      : chain_(chain),
+        no_wrenches_(chain_.getNrOfSegments(), KDL::Wrench::Zero()),
+        id_(chain_, KDL::Vector(g.x, g.y, g.z)),
+        param_(chain_, KDL::Vector(g.x, g.y, g.z)),
         fd_(chain_, KDL::Vector(g.x, g.y, g.z)) {
     for (const KDL::Segment& segment : chain_.segments)
       if (segment.getJoint().getType() != KDL::Joint::Fixed)
@@ -142,12 +145,6 @@ class ChainDynamics final : public Dynamics {
   KDL::ChainDynParam param_;
   KDL::ChainFdSolver_RNE fd_;
 };
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d W;
-  W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
-  return W;
-}
 
 /// Fills the free joint's blocks (q at iq, v at iv) from random virtual-joint coordinates
 /// (KDL columns k[0..5], in virtual_joints order).
@@ -183,7 +180,7 @@ void fill_free_joint(StatePair& s, int iq, int iv, const int (&k)[6], Random& rn
                         w2 = axes.col(2) * rates[2];
   const Eigen::Vector3d v = R.transpose() * pd, w = R.transpose() * (w0 + w1 + w2);
   Eigen::Matrix<double, 6, 1> Tdot_qd;
-  Tdot_qd << -skew(w) * v, R.transpose() * (w0.cross(w1) + (w0 + w1).cross(w2));
+  Tdot_qd << -w.cross(v), R.transpose() * (w0.cross(w1) + (w0 + w1).cross(w2));
 
   Eigen::Matrix<double, 6, 1> qd, qdd;
   qd << pd, rates;
@@ -220,8 +217,7 @@ KDL::Tree load_tree(const std::string& urdf_path, const std::vector<std::string>
   // dummy link, as that warning suggests. On a fixed base the root link's mass then rests on
   // the ground, where it moves nothing (dyngen drops it); on a floating base it is the base.
   const auto* root = robot->FirstChildElement("link");
-  while (root && children.count(root->Attribute("name")))
-    root = root->NextSiblingElement("link");
+  while (root && children.count(root->Attribute("name"))) root = root->NextSiblingElement("link");
   if (!root) throw std::runtime_error(urdf_path + ": no root link");
   const std::string dummy = "kdl_peer_root";
   robot->InsertNewChildElement("link")->SetAttribute("name", dummy.c_str());
@@ -274,7 +270,8 @@ StatePair random_state_pair(const Model<double>& model, const std::vector<std::s
   for (int k = 0; k < nk; ++k) kdl_index.emplace(kdl_names[k], k);
   auto column = [&](const std::string& name) {
     const auto it = kdl_index.find(name);
-    if (it == kdl_index.end()) throw std::runtime_error("joint '" + name + "' is not in KDL's model");
+    if (it == kdl_index.end())
+      throw std::runtime_error("joint '" + name + "' is not in KDL's model");
     return it->second;
   };
 

@@ -19,9 +19,8 @@ namespace dyngen::test::kdl {
 /// The virtual joints that carry a floating base in KDL, in chain order: prismatic along
 /// world x, y, z, then revolute about z (yaw), the new y (pitch) and the new x (roll), so the
 /// base sits at p = (x, y, z) with orientation R = Rz(yaw) Ry(pitch) Rx(roll).
-inline const std::vector<std::string> virtual_joints{"virtual_px", "virtual_py", "virtual_pz",
-                                                     "virtual_yaw", "virtual_pitch",
-                                                     "virtual_roll"};
+inline const std::vector<std::string> virtual_joints{
+    "virtual_px", "virtual_py", "virtual_pz", "virtual_yaw", "virtual_pitch", "virtual_roll"};
 
 /// kdl_parser's tree of a URDF file, with the root link under a dummy root link (kdl_parser
 /// would drop the root link's inertia) and the named joints turned into fixed joints, as
@@ -65,17 +64,17 @@ std::unique_ptr<Dynamics> chain_dynamics(const KDL::Chain& chain, const Vec3<dou
 /// One state in both libraries' coordinates. KDL's velocities map to dyngen's by
 /// v = G qd_kdl, so a = G qdd_kdl + Gdot qd_kdl, tau_kdl = G^T tau and M_kdl = G^T M G.
 struct StatePair {
-  Eigen::VectorXd q, v, a, tau;       // dyngen: nq, nv, nv, nv
+  Eigen::VectorXd q, v, a, tau;  // dyngen: nq, nv, nv, nv
   Eigen::VectorXd q_kdl, qd_kdl, qdd_kdl;
-  Eigen::MatrixXd G;                  // nv x KDL joints
-  Eigen::VectorXd Gdot_qd;            // Gdot qd_kdl
+  Eigen::MatrixXd G;        // nv x KDL joints
+  Eigen::VectorXd Gdot_qd;  // Gdot qd_kdl
 };
 
 /// A random state: each 1-DoF joint at q in [-pi, pi] (rad or m), qd and qdd in [-2, 2]; a free
 /// joint at a position in [-1, 1]^3, yaw and roll in [-pi, pi], pitch in [-1.4, 1.4] (away from
 /// the virtual chain's singularity at +-pi/2), and virtual-joint rates and accelerations in
 /// [-2, 2]; tau in [-5, 5]. `kdl_names` is Dynamics::joint_names(); joints are matched by name.
-StatePair random_state_pair(const Model<double>& model,
-                            const std::vector<std::string>& kdl_names, Random& rng);
+StatePair random_state_pair(const Model<double>& model, const std::vector<std::string>& kdl_names,
+                            Random& rng);
 
 }  // namespace dyngen::test::kdl

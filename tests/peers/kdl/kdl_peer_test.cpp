@@ -1,11 +1,15 @@
 // orocos-KDL against the runtime on every shared robot: inverse dynamics, the mass matrix and
 // forward dynamics at seeded random states, with a fixed and with a floating base. README.md
 // lists the modelling differences between the two libraries and how the test removes them.
+#include "kdl_peer.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <set>
@@ -14,7 +18,6 @@
 #include <vector>
 
 #include "dyngen/dyngen.hpp"
-#include "kdl_peer.hpp"
 #include "robot.hpp"
 #include "test_support.hpp"
 
@@ -77,8 +80,8 @@ double largest_error(Algorithm algorithm, const Model<double>& model, Dynamics& 
   return largest;
 }
 
-/// One robot in both libraries, under the same load options (RobotFile's accept mimic joints
-/// as independent joints, which is what kdl_parser makes of them).
+/// One robot in both libraries, under the same load options (RobotFile's options accept mimic
+/// joints as independent joints, which is what kdl_parser makes of them).
 struct Peer {
   gen::Robot robot;
   std::unique_ptr<Dynamics> tree, chain;  // chain: null where KDL's chain is not the robot
@@ -116,15 +119,18 @@ void print_table() {
       states_per_robot, tolerance);
   std::printf("%-16s %-8s %3s", "robot", "base", "nv");
   for (const char* solver : solver_names)
-    for (const char* algorithm : algorithm_names) std::printf("  %5s %-4s", solver, algorithm);
+    for (const char* algorithm : algorithm_names)
+      std::printf("  %10s", (std::string(solver) + " " + algorithm).c_str());
   std::printf("\n");
   for (const Row& row : table()) {
     std::printf("%-16s %-8s %3d", row.robot.c_str(), row.floating_base ? "floating" : "fixed",
                 row.nv);
     for (const auto& by_solver : row.error)
       for (const std::optional<double>& error : by_solver)
-        if (error) std::printf("  %10.2e", *error);
-        else std::printf("  %10s", "-");
+        if (error)
+          std::printf("  %10.2e", *error);
+        else
+          std::printf("  %10s", "-");
     std::printf("\n");
   }
 }

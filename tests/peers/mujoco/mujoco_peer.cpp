@@ -5,9 +5,10 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <array>
-#include <map>
-#include <optional>
+#include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <sstream>
 #include <stdexcept>
 
 #include "test_support.hpp"
@@ -17,15 +18,19 @@ namespace dyngen::test::mujoco_peer {
 namespace {
 
 using tinyxml2::XMLElement;
+using Matrix3 = Eigen::Matrix3d;
+using Vector3 = Eigen::Vector3d;
+using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// fusestatic: merge links on fixed joints into their parent body, as dyngen does (the URDF
-// default, said explicitly). inertiafromgeom="false": a link without <inertial> has no mass, as
-// in dyngen, instead of one computed from its geometry. balanceinertia: load links whose
-// inertia breaks A + B >= C (dyngen accepts them with a warning); MujocoRobot puts their
-// inertia back. boundmass, boundinertia = 0 (the defaults): no mass or inertia is raised.
+// fusestatic="false": every link stays a body of its own, welded to its parent by a fixed
+// joint; fusing would re-diagonalise merged inertias with MuJoCo's inaccurate eigensolver.
+// inertiafromgeom="false": a link without <inertial> has no mass, as in dyngen, instead of one
+// computed from its geometry. balanceinertia: load the links whose inertia breaks A + B >= C
+// (dyngen accepts them with a warning); MujocoRobot puts their moments back. boundmass,
+// boundinertia = 0 (the defaults): no mass or inertia is raised.
 constexpr const char* compiler_options =
-    "<mujoco><compiler fusestatic=\"true\" discardvisual=\"true\" inertiafromgeom=\"false\" "
+    "<mujoco><compiler fusestatic=\"false\" discardvisual=\"true\" inertiafromgeom=\"false\" "
     "balanceinertia=\"true\" boundmass=\"0\" boundinertia=\"0\"/></mujoco>";
 
 std::string attribute(const XMLElement* e, const char* name) {
@@ -38,41 +43,89 @@ std::string link_of(const XMLElement* joint, const char* role) {
   return e ? attribute(e, "link") : "";
 }
 
-/// MuJoCo's check of a link's inertia, on the principal moments of the URDF tensor.
-bool breaks_triangle_inequality(const XMLElement* link) {
-  const XMLElement* inertial = link->FirstChildElement("inertial");
-  const XMLElement* inertia = inertial ? inertial->FirstChildElement("inertia") : nullptr;
-  if (!inertia) return false;
+/// Numbers as text that reads back to the same doubles.
+std::string format(std::initializer_list<double> values) {
+  std::string text;
+  for (const double x : values) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.17g", x);
+    if (!text.empty()) text += ' ';
+    text += buffer;
+  }
+  return text;
+}
+
+Vector3 read_vector(const XMLElement* e, const char* name) {
+  Vector3 v = Vector3::Zero();
+  std::istringstream text(e ? attribute(e, name) : "");
+  text >> v(0) >> v(1) >> v(2);
+  return v;
+}
+
+/// URDF's rotation from roll, pitch and yaw: Rz(yaw) Ry(pitch) Rx(roll).
+Matrix3 rotation_from_rpy(const Vector3& rpy) {
+  return (Eigen::AngleAxisd(rpy(2), Vector3::UnitZ()) *
+          Eigen::AngleAxisd(rpy(1), Vector3::UnitY()) * Eigen::AngleAxisd(rpy(0), Vector3::UnitX()))
+      .toRotationMatrix();
+}
+
+/// Roll, pitch and yaw of a rotation; at pitch +-pi/2 exactly, the one with yaw 0.
+Vector3 rpy_from_rotation(const Matrix3& R) {
+  const double pitch = std::atan2(-R(2, 0), std::hypot(R(0, 0), R(1, 0)));
+  if (std::hypot(R(0, 0), R(1, 0)) == 0) return {std::atan2(-R(1, 2), R(1, 1)), pitch, 0};
+  return {std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0))};
+}
+
+/// Principal axes (columns, a rotation as close to the identity as the axes allow, which
+/// keeps the inertial frame's pitch away from +-pi/2) and moments of a symmetric tensor.
+std::pair<Matrix3, Vector3> principal_axes(const Matrix3& J) {
+  const Eigen::SelfAdjointEigenSolver<Matrix3> eig(J);
+  std::array<int, 3> order{0, 1, 2}, best = order;
+  double best_alignment = -1;
+  do {
+    const double alignment = std::abs(eig.eigenvectors()(0, order[0])) +
+                             std::abs(eig.eigenvectors()(1, order[1])) +
+                             std::abs(eig.eigenvectors()(2, order[2]));
+    if (alignment > best_alignment) best_alignment = alignment, best = order;
+  } while (std::next_permutation(order.begin(), order.end()));
+  Matrix3 axes;
+  Vector3 moments;
+  for (int k = 0; k < 3; ++k) {
+    const double sign = eig.eigenvectors()(k, best[k]) < 0 ? -1 : 1;
+    axes.col(k) = sign * eig.eigenvectors().col(best[k]);
+    moments(k) = eig.eigenvalues()(best[k]);
+  }
+  if (axes.determinant() < 0) axes.col(2) *= -1;
+  return {axes, moments};
+}
+
+/// Rewrites a link's <inertial> with a diagonal inertia in its principal axes.
+PrincipalInertia diagonalise_inertia(XMLElement* inertial) {
+  XMLElement* origin = inertial->FirstChildElement("origin");
+  if (!origin) origin = inertial->InsertNewChildElement("origin");
+  XMLElement* inertia = inertial->FirstChildElement("inertia");
+  if (!inertia) inertia = inertial->InsertNewChildElement("inertia");
   auto get = [&](const char* name) { return inertia->DoubleAttribute(name, 0.0); };
-  Eigen::Matrix3d J;
+  Matrix3 J;
   J << get("ixx"), get("ixy"), get("ixz"), get("ixy"), get("iyy"), get("iyz"), get("ixz"),
       get("iyz"), get("izz");
-  const Eigen::Vector3d e =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(J, Eigen::EigenvaluesOnly).eigenvalues();
-  return e(0) + e(1) < e(2);  // ascending
+  const auto [axes, moments] = principal_axes(J);
+  const Matrix3 frame = rotation_from_rpy(read_vector(origin, "rpy")) * axes;
+  const Vector3 rpy = rpy_from_rotation(frame);
+  origin->SetAttribute("rpy", format({rpy(0), rpy(1), rpy(2)}).c_str());
+  for (const char* product : {"ixy", "ixz", "iyz"}) inertia->SetAttribute(product, "0");
+  inertia->SetAttribute("ixx", format({moments(0)}).c_str());
+  inertia->SetAttribute("iyy", format({moments(1)}).c_str());
+  inertia->SetAttribute("izz", format({moments(2)}).c_str());
+  const Eigen::Quaterniond quat(frame);
+  return {{moments(0), moments(1), moments(2)}, {quat.w(), quat.x(), quat.y(), quat.z()}};
 }
 
-/// Replaces a body's inertial frame, mass and principal moments with a dyngen inertia.
-void set_body_inertia(mjModel* m, int body, const RigidInertia<double>& I) {
-  const Eigen::Vector3d c = I.m > 0 ? Eigen::Vector3d(dense(I.h) / I.m) : Eigen::Vector3d::Zero();
-  const Eigen::Matrix3d Ic =
-      dense(I.I) - I.m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Ic);
-  Eigen::Matrix3d axes = eig.eigenvectors();
-  if (axes.determinant() < 0) axes.col(2) *= -1;
-  const Eigen::Quaterniond quat(axes);
-  m->body_mass[body] = I.m;
-  for (int k = 0; k < 3; ++k) {
-    m->body_ipos[3 * body + k] = c(k);
-    m->body_inertia[3 * body + k] = eig.eigenvalues()(k);
-  }
-  const std::array<double, 4> wxyz{quat.w(), quat.x(), quat.y(), quat.z()};
-  std::copy(wxyz.begin(), wxyz.end(), m->body_iquat + 4 * body);
-}
-
-/// Rotation of a unit quaternion given w first, as dyngen's free joint stores it.
-Eigen::Matrix3d rotation(std::span<const double> wxyz) {
-  return Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]).toRotationMatrix();
+/// Rotation of a unit quaternion given w first (dyngen's free joint and MuJoCo).
+Matrix3 rotation(std::span<const double> wxyz) {
+  RowMajor3 R;
+  mju_quat2Mat(R.data(), wxyz.data());
+  return R;
 }
 
 int mujoco_joint_type(JointType t) {
@@ -93,12 +146,19 @@ MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& 
   XMLElement* robot = doc.FirstChildElement("robot");
   if (!robot) throw std::runtime_error(path + ": no <robot> element");
 
+  MujocoUrdf result;
   std::map<std::string, XMLElement*> links, parent_joint;  // by link name
   for (XMLElement* link = robot->FirstChildElement("link"); link;
        link = link->NextSiblingElement("link")) {
     for (const char* tag : {"visual", "collision"})
       while (XMLElement* e = link->FirstChildElement(tag)) link->DeleteChild(e);
-    links[attribute(link, "name")] = link;
+    const std::string name = attribute(link, "name");
+    links[name] = link;
+    if (XMLElement* inertial = link->FirstChildElement("inertial")) {
+      const PrincipalInertia principal = diagonalise_inertia(inertial);
+      const auto& [a, b, c] = principal.moments;
+      if (a + b < c || a + c < b || b + c < a) result.unphysical[name] = principal;
+    }
   }
   for (XMLElement* joint = robot->FirstChildElement("joint"); joint;
        joint = joint->NextSiblingElement("joint")) {
@@ -111,7 +171,8 @@ MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& 
     std::string root;
     for (const auto& [name, link] : links)
       if (!parent_joint.count(name)) root = name;
-    // MuJoCo's URDF importer takes a link named "world" for its world body, which cannot move.
+    // MuJoCo's URDF importer takes the link named "world" for its world body: the free joint
+    // goes from a new link of that name (the root, if it has that name, is renamed).
     if (root == "world") {
       root = "dyngen_root";
       links.at("world")->SetAttribute("name", root.c_str());
@@ -119,24 +180,12 @@ MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& 
         if (link_of(joint, "parent") == "world")
           joint->FirstChildElement("parent")->SetAttribute("link", root.c_str());
     }
-    XMLElement* world = robot->InsertNewChildElement("link");
-    world->SetAttribute("name", "dyngen_world");
+    robot->InsertNewChildElement("link")->SetAttribute("name", "world");
     XMLElement* joint = robot->InsertNewChildElement("joint");
     joint->SetAttribute("name", floating_joint);
     joint->SetAttribute("type", "floating");
-    joint->InsertNewChildElement("parent")->SetAttribute("link", "dyngen_world");
+    joint->InsertNewChildElement("parent")->SetAttribute("link", "world");
     joint->InsertNewChildElement("child")->SetAttribute("link", root.c_str());
-    parent_joint[root] = joint;
-  }
-
-  MujocoUrdf result;
-  for (const auto& [name, link] : links) {
-    if (!breaks_triangle_inequality(link)) continue;
-    // the moving body this link belongs to: up through fixed joints to a moving one
-    std::string l = name;
-    while (parent_joint.count(l) && attribute(parent_joint.at(l), "type") == "fixed")
-      l = link_of(parent_joint.at(l), "parent");
-    if (parent_joint.count(l)) result.unphysical.insert(attribute(parent_joint.at(l), "name"));
   }
 
   while (XMLElement* e = robot->FirstChildElement("mujoco")) robot->DeleteChild(e);
@@ -148,18 +197,6 @@ MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& 
   doc.Print(&printer);
   result.text = printer.CStr();
   return result;
-}
-
-RigidInertia<double> body_inertia(const mjModel* m, int body) {
-  const double mass = m->body_mass[body];
-  const Eigen::Map<const Eigen::Vector3d> c(m->body_ipos + 3 * body);
-  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R;
-  mju_quat2Mat(R.data(), m->body_iquat + 4 * body);
-  const Eigen::Map<const Eigen::Vector3d> moments(m->body_inertia + 3 * body);
-  const Eigen::Matrix3d I = R * moments.asDiagonal() * R.transpose() +
-                            mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-  return {mass, {mass * c(0), mass * c(1), mass * c(2)},
-          {I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)}};
 }
 
 MujocoRobot::MujocoRobot(const std::string& path, const Model<double>& model,
@@ -182,11 +219,21 @@ MujocoRobot::MujocoRobot(const std::string& path, const Model<double>& model,
 
   // Forces dyngen does not model: joint limits and friction (constraints), damping (passive),
   // contacts, equality constraints and actuators; armature would add to the mass matrix.
-  m_->opt.disableflags |= mjDSBL_CONSTRAINT | mjDSBL_EQUALITY | mjDSBL_FRICTIONLOSS |
-                          mjDSBL_LIMIT | mjDSBL_CONTACT | mjDSBL_PASSIVE | mjDSBL_ACTUATION;
+  m_->opt.disableflags |= mjDSBL_CONSTRAINT | mjDSBL_EQUALITY | mjDSBL_FRICTIONLOSS | mjDSBL_LIMIT |
+                          mjDSBL_CONTACT | mjDSBL_PASSIVE | mjDSBL_ACTUATION;
   std::fill_n(m_->dof_damping, m_->nv, 0.0);
   std::fill_n(m_->dof_frictionloss, m_->nv, 0.0);
   std::fill_n(m_->dof_armature, m_->nv, 0.0);
+
+  // balanceinertia's isotropic moments come with arbitrary axes: put both back
+  for (const auto& [link, principal] : urdf.unphysical) {
+    const int b = mj_name2id(m_.get(), mjOBJ_BODY, link.c_str());
+    if (b <= 0) throw std::runtime_error(path + ": MuJoCo has no body for link '" + link + "'");
+    double* inertia = m_->body_inertia + 3 * b;
+    balanced_[link] = {inertia[0], inertia[1], inertia[2]};
+    std::copy(principal.moments.begin(), principal.moments.end(), inertia);
+    std::copy(principal.quat.begin(), principal.quat.end(), m_->body_iquat + 4 * b);
+  }
 
   if (m_->njnt != model_.nbodies || m_->nq != model_.nq || m_->nv != model_.nv)
     throw std::runtime_error(path + ": MuJoCo has " + std::to_string(m_->njnt) + " joints, nq " +
@@ -199,13 +246,46 @@ MujocoRobot::MujocoRobot(const std::string& path, const Model<double>& model,
       throw std::runtime_error(path + ": MuJoCo has no joint '" + model_.joint_name[i] +
                                "' of type " + joint_type_name(model_.joint_type[i]));
     joint_.push_back(j);
-    imported_.push_back(body_inertia(m_.get(), body(i)));
-    if (urdf.unphysical.count(model_.joint_name[i])) {
-      set_body_inertia(m_.get(), body(i), model_.I[i]);
-      replaced_.insert(model_.joint_name[i]);
-    }
   }
   d_.reset(mj_makeData(m_.get()));
+}
+
+std::pair<Matrix3, Vector3> relative_pose(const mjModel* m, int body, int ancestor) {
+  Matrix3 R = Matrix3::Identity();
+  Vector3 p = Vector3::Zero();
+  for (int l = body; l != ancestor; l = m->body_parentid[l]) {
+    if (l == 0) throw std::runtime_error("relative_pose: not an ancestor");
+    const Matrix3 R_l = rotation({m->body_quat + 4 * l, 4});
+    p = R_l * p + Eigen::Map<const Vector3>(m->body_pos + 3 * l);
+    R = R_l * R;
+  }
+  return {R, p};
+}
+
+Eigen::Matrix<double, 6, 6> MujocoRobot::inertia(int i) const {
+  const mjModel* m = m_.get();
+  const int b = body(i);
+  Eigen::Matrix<double, 6, 6> total = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int k = 0; k < m->nbody; ++k) {
+    if (m->body_weldid[k] != b) continue;
+    // body k's inertia about its origin, in its coordinates
+    const double mass = m->body_mass[k];
+    const Vector3 c = Eigen::Map<const Vector3>(m->body_ipos + 3 * k);
+    const Matrix3 Rc = rotation({m->body_iquat + 4 * k, 4});
+    const Matrix3 J =
+        Rc * Eigen::Map<const Vector3>(m->body_inertia + 3 * k).asDiagonal() * Rc.transpose() +
+        mass * (c.squaredNorm() * Matrix3::Identity() - c * c.transpose());
+    const Vector3 h = mass * c;
+    const RigidInertia<double> I_k{
+        mass, {h(0), h(1), h(2)}, {J(0, 0), J(1, 1), J(2, 2), J(0, 1), J(0, 2), J(1, 2)}};
+    const auto [R, p] = relative_pose(m, k, b);
+    // X maps motion from b's coordinates to k's: X = rot(R^T) xlt(p)
+    const Xform<double> X{
+        {R(0, 0), R(1, 0), R(2, 0), R(0, 1), R(1, 1), R(2, 1), R(0, 2), R(1, 2), R(2, 2)},
+        {p(0), p(1), p(2)}};
+    total += dense(X).transpose() * dense(I_k) * dense(X);
+  }
+  return total;
 }
 
 Eigen::MatrixXd MujocoRobot::set_state(std::span<const double> q, std::span<const double> v) {
@@ -233,7 +313,7 @@ Eigen::VectorXd MujocoRobot::free_joint_bias(std::span<const double> q,
   for (int i = 0; i < model_.nbodies; ++i) {
     if (model_.joint_type[i] != JointType::Free) continue;
     const int iv = model_.v_index[i];
-    const Eigen::Map<const Eigen::Vector3d> lin(v.data() + iv), ang(v.data() + iv + 3);
+    const Eigen::Map<const Vector3> lin(v.data() + iv), ang(v.data() + iv + 3);
     bias.segment<3>(m_->jnt_dofadr[joint_[i]]) =
         rotation(q.subspan(model_.q_index[i] + 3, 4)) * ang.cross(lin);
   }

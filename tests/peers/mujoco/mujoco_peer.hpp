@@ -12,6 +12,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dyngen/model.hpp"
@@ -21,12 +22,18 @@ namespace dyngen::test::mujoco_peer {
 /// The free joint that MuJoCo gets for a floating base, named like dyngen's.
 inline constexpr const char* floating_joint = "floating_base";
 
+/// A link's inertia in its principal axes, as written for MuJoCo.
+struct PrincipalInertia {
+  std::array<double, 3> moments;
+  std::array<double, 4> quat;  // w first: orientation of the principal axes in the link
+};
+
 /// A URDF rewritten for MuJoCo's importer.
 struct MujocoUrdf {
   std::string text;
-  /// Principal moments of the links (by name) that break the triangle inequality A + B >= C:
-  /// MuJoCo refuses such a link unless balanceinertia replaces its moments by their mean.
-  std::map<std::string, std::array<double, 3>> unphysical;
+  /// The links (by name) whose principal moments break the triangle inequality A + B >= C:
+  /// MuJoCo refuses them unless balanceinertia replaces the moments by their mean.
+  std::map<std::string, PrincipalInertia> unphysical;
 };
 
 /// The file at path rewritten for MuJoCo: without <visual> and <collision> (their meshes are not
@@ -37,6 +44,10 @@ struct MujocoUrdf {
 /// options that keep every link a body of its own with the file's inertia.
 MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& locked,
                        bool floating_base);
+
+/// Rotation and position of MuJoCo body `body` in the frame of its ancestor `ancestor`, at
+/// q = 0 of the joints between them.
+std::pair<Eigen::Matrix3d, Eigen::Vector3d> relative_pose(const mjModel* m, int body, int ancestor);
 
 /// MuJoCo's model of a robot that dyngen loaded, and its dynamics in dyngen's coordinates.
 ///
