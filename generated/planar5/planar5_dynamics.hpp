@@ -26,7 +26,7 @@ namespace planar5 {
 inline constexpr int nq = 5;
 inline constexpr int nv = 5;
 
-/// Joint names, in q, v and tau order.
+/// Names of the entries of v, a, tau and qdd, in order.
 inline constexpr const char* joint_names[nv] = {
     "link1_joint",
     "link2_joint",

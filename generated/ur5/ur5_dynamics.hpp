@@ -26,7 +26,7 @@ namespace ur5 {
 inline constexpr int nq = 6;
 inline constexpr int nv = 6;
 
-/// Joint names, in q, v and tau order.
+/// Names of the entries of v, a, tau and qdd, in order.
 inline constexpr const char* joint_names[nv] = {
     "shoulder_pan_joint",
     "shoulder_lift_joint",

@@ -148,9 +148,9 @@ TEST_P(Physics, RuntimeEnergiesMatchWorldKinematics) {
     const double T_ref = energy.kinetic(test::to_eigen(s.q), test::to_eigen(s.qd));
     const double V_ref = energy.potential(test::to_eigen(s.q));
     worst = std::max(worst, (std::abs(T - T_ref) + std::abs(V - V_ref)) /
-                                (model.nbodies * 64 * eps * (std::abs(T_ref) + std::abs(V_ref))));
+                                (model.nbodies * 4 * eps * (std::abs(T_ref) + std::abs(V_ref))));
   }
-  report("runtime energies vs world kinematics / (64 n eps (|T| + |V|))", worst);
+  report("runtime energies vs world kinematics / (4 n eps (|T| + |V|))", worst);
   EXPECT_LE(worst, 1.0);
 }
 
