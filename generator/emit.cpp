@@ -88,6 +88,7 @@ std::string joint_description(const Model<double>& model, int body) {
     case JointType::RevoluteZ: return k.z > 0 ? "revolute +z" : "revolute -z";
     case JointType::Revolute: return fmt::format("revolute axis ({}, {}, {})", k.x, k.y, k.z);
     case JointType::Prismatic: return fmt::format("prismatic axis ({}, {}, {})", k.x, k.y, k.z);
+    case JointType::Free: return "free (6 DoF)";
   }
   return "?";
 }

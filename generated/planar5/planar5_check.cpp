@@ -41,6 +41,8 @@ struct State {
   std::vector<Scalar> q, v, x;
 };
 
+const dyngen::Model<Scalar> model = planar5::runtime_model().cast<Scalar>();
+
 /// Doubles from raw mt19937_64 bits: the same on every standard library.
 double uniform(std::mt19937_64& rng, double lo, double hi) {
   return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
@@ -58,6 +60,17 @@ State make_state(int s) {
   for (Scalar& q : st.q) q = static_cast<Scalar>(uniform(rng, -q_range, q_range));
   for (Scalar& v : st.v) v = static_cast<Scalar>(uniform(rng, -v_range, v_range));
   for (Scalar& x : st.x) x = static_cast<Scalar>(uniform(rng, -x_range, x_range));
+  // a free joint's quaternion is a unit one, as the algorithms assume: a huge one would
+  // overflow, and the contract holds for computations that stay finite
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (model.joint_type[i] != dyngen::JointType::Free) continue;
+    Scalar* w = &st.q[model.q_index[i] + 3];
+    const double w0 = uniform(rng, -1, 1), w1 = uniform(rng, -1, 1), w2 = uniform(rng, -1, 1),
+                 w3 = uniform(rng, -1, 1);
+    const double norm = std::sqrt(w0 * w0 + w1 * w1 + w2 * w2 + w3 * w3);
+    w[0] = static_cast<Scalar>(w0 / norm), w[1] = static_cast<Scalar>(w1 / norm);
+    w[2] = static_cast<Scalar>(w2 / norm), w[3] = static_cast<Scalar>(w3 / norm);
+  }
   return st;
 }
 
@@ -92,7 +105,6 @@ bool same_bits(Scalar a, Scalar b) {
   return ::testing::AssertionSuccess();
 }
 
-const dyngen::Model<Scalar> model = planar5::runtime_model().cast<Scalar>();
 
 }  // namespace
 

@@ -251,9 +251,41 @@ void expect_axis_kinds(const Model<double>& model, const std::string& name) {
       case JointType::RevoluteY: EXPECT_TRUE(y && std::abs(k.y) == 1) << name; break;
       case JointType::RevoluteZ: EXPECT_TRUE(z && std::abs(k.z) == 1) << name; break;
       case JointType::Revolute: EXPECT_FALSE(x || y || z) << name; break;
-      case JointType::Prismatic: break;
+      case JointType::Prismatic:
+      case JointType::Free: break;
     }
   }
+}
+
+TEST(ModelBuilder, PlanarAndFloatingJointsAnywhere) {
+  const Model<double> model =
+      gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
+  EXPECT_EQ(model.nq, model.nv + 1);
+  auto body = [&](const std::string& name) {
+    const auto it = std::find(model.body_name.begin(), model.body_name.end(), name);
+    EXPECT_NE(it, model.body_name.end()) << name;
+    return static_cast<int>(it - model.body_name.begin());
+  };
+  // planar: two massless prismatic bodies along orthonormal in-plane directions u and w = n x u,
+  // then the link itself, turning about n
+  const int u = body("puck:u"), w = body("puck:w"), rot = body("puck");
+  EXPECT_EQ(model.parent[w], u);
+  EXPECT_EQ(model.parent[rot], w);
+  EXPECT_EQ(model.joint_name[u], "table_plane:u");
+  EXPECT_EQ(model.joint_type[u], JointType::Prismatic);
+  EXPECT_EQ(model.joint_type[w], JointType::Prismatic);
+  EXPECT_EQ(model.joint_type[rot], JointType::RevoluteZ);
+  EXPECT_EQ(model.I[u].m, 0.0);
+  EXPECT_EQ(model.I[w].m, 0.0);
+  EXPECT_EQ(dense(model.joint_axis[u]), Eigen::Vector3d(1, 0, 0));
+  EXPECT_EQ(dense(model.joint_axis[w]), Eigen::Vector3d(0, 1, 0));
+  // floating below the elbow: a free joint with seven q entries, at the joint's origin
+  const int drone = body("drone");
+  EXPECT_EQ(model.joint_type[drone], JointType::Free);
+  EXPECT_EQ(model.body_name[model.parent[drone]], "arm");
+  EXPECT_EQ(model.q_index[drone] - model.v_index[drone], 0);
+  EXPECT_EQ(model.q_index[drone + 1] - model.q_index[drone], 7);
+  EXPECT_EQ(model.v_index[drone + 1] - model.v_index[drone], 6);
 }
 
 /// Bodies in topological order: parent[i] < i, one coordinate each, in body order.

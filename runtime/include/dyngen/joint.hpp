@@ -53,13 +53,7 @@ Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
     case JointType::Free: {
       // XJ = rot(R^T) xlt(p) with R the rotation of the unit quaternion (w, x, y, z)
       const Vec3<S> p{qi[0], qi[1], qi[2]};
-      const S &w = qi[3], &x = qi[4], &y = qi[5], &z = qi[6];
-      const S xx = x * x, yy = y * y, zz = z * z;
-      const S xy = x * y, xz = x * z, yz = y * z, wx = w * x, wy = w * y, wz = w * z;
-      const S one(1), two(2);
-      const Mat3<S> RT{one - two * (yy + zz), two * (xy + wz),        two * (xz - wy),
-                       two * (xy - wz),        one - two * (xx + zz), two * (yz + wx),
-                       two * (xz + wy),        two * (yz - wx),        one - two * (xx + yy)};
+      const Mat3<S> RT = transpose(quaternion_rotation(qi[3], qi[4], qi[5], qi[6]));
       return {mul(RT, T), Xt.r + mul_T(T, p)};
     }
   }
@@ -79,13 +73,9 @@ Motion<S> joint_motion(const Model<S>& model, int i, const S* qd) {
 /// Column d of S
 template <class S>
 Motion<S> joint_column(const Model<S>& model, int i, int d) {
-  if (model.joint_type[i] == JointType::Free) {
-    S e[6]{};
-    e[d] = S(1);
-    return joint_motion(model, i, e);
-  }
-  const S one(1);
-  return joint_motion(model, i, &one);
+  S e[6]{};
+  e[d] = S(1);
+  return joint_motion(model, i, e);
 }
 
 /// S^T f, into the joint's entries of out

@@ -26,11 +26,7 @@ void configuration_rate(const Model<S>& model, std::span<const S> q, std::span<c
       continue;
     }
     const S &w = qi[3], &x = qi[4], &y = qi[5], &z = qi[6];
-    // the position rate R v: R's columns from the quaternion
-    const Mat3<S> R{1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
-                    2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
-                    2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
-    const Vec3<S> p_rate = mul(R, Vec3<S>{vi[0], vi[1], vi[2]});
+    const Vec3<S> p_rate = mul(quaternion_rotation(w, x, y, z), Vec3<S>{vi[0], vi[1], vi[2]});
     out[0] = p_rate.x, out[1] = p_rate.y, out[2] = p_rate.z;
     // quat (0, w) with the angular velocity w in body coordinates
     const S &wx = vi[3], &wy = vi[4], &wz = vi[5];

@@ -216,10 +216,6 @@ class ModelBuilder {
 
   static Xform<double> identity() { return {{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}}; }
 
-  static Mat3<double> transpose(const Mat3<double>& R) {
-    return {R.xx, R.yx, R.zx, R.xy, R.yy, R.zy, R.xz, R.yz, R.zz};
-  }
-
   int find_link(const std::string& name, const std::string& joint, const char* role) const {
     const auto it = link_index_.find(name);
     if (it == link_index_.end())

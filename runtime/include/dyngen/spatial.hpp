@@ -291,6 +291,23 @@ ArticulatedInertia<S> operator+(const ArticulatedInertia<S>& a, const Articulate
 }
 
 
+/// The rotation of a unit quaternion (w, x, y, z), taking body to parent coordinates; its
+/// transpose is the E of the body's transform.
+template <class S>
+Mat3<S> quaternion_rotation(const S& w, const S& x, const S& y, const S& z) {
+  const S xx = x * x, yy = y * y, zz = z * z;
+  const S xy = x * y, xz = x * z, yz = y * z, wx = w * x, wy = w * y, wz = w * z;
+  const S one(1), two(2);
+  return {one - two * (yy + zz), two * (xy - wz),        two * (xz + wy),
+          two * (xy + wz),        one - two * (xx + zz), two * (yz - wx),
+          two * (xz - wy),        two * (yz + wx),        one - two * (xx + yy)};
+}
+
+template <class S>
+Mat3<S> transpose(const Mat3<S>& A) {
+  return {A.xx, A.yx, A.zx, A.xy, A.yy, A.zy, A.xz, A.yz, A.zz};
+}
+
 template <class S>
 Motion<S> operator-(const Motion<S>& a, const Motion<S>& b) {
   return {a.ang - b.ang, a.lin - b.lin};
