@@ -92,7 +92,7 @@ nlohmann::json evaluate(const Model<double>& model, const nlohmann::json& states
       if (state.contains("tau")) {
         if (!aba_checked) {
           std::string names;
-          for (const int i : joints_moving_no_mass(model))
+          for (const int i : joints_blocking_aba(model))
             names += (names.empty() ? "'" : ", '") + model.joint_name[i] + "'";
           if (!names.empty())
             throw InputError(fmt::format(

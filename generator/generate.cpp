@@ -1,6 +1,5 @@
 #include "generate.hpp"
 
-#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -169,10 +168,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
 Generated generate(const Robot& robot, const GenerateOptions& options) {
   for (const Algorithm a : options.algorithms)
     if (a == Algorithm::Aba) {
-      std::vector<int> joints = joints_with_massless_subtree(robot.model);
-      for (const int i : joints_moving_no_mass(robot.model))
-        if (std::find(joints.begin(), joints.end(), i) == joints.end()) joints.push_back(i);
-      std::sort(joints.begin(), joints.end());
+      const std::vector<int> joints = joints_blocking_aba(robot.model);
       if (joints.empty()) break;
       std::string names, locks;
       for (const int i : joints) {

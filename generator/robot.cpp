@@ -136,6 +136,14 @@ void check_mimics(Robot& robot, const std::vector<std::pair<std::string, std::st
 
 }  // namespace
 
+std::vector<int> joints_blocking_aba(const Model<double>& model) {
+  std::vector<int> joints = joints_with_massless_subtree(model);
+  for (const int i : joints_moving_no_mass(model))
+    if (std::find(joints.begin(), joints.end(), i) == joints.end()) joints.push_back(i);
+  std::sort(joints.begin(), joints.end());
+  return joints;
+}
+
 Robot load_robot(const std::string& path, const LoadOptions& options) {
   if (!std::filesystem::is_regular_file(path))
     throw InputError(fmt::format(

@@ -59,4 +59,7 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model);
 /// Joints whose whole subtree has zero mass and inertia.
 std::vector<int> joints_with_massless_subtree(const Model<double>& model);
 
+/// The joints that make ABA undefined, both kinds above, in body order (empty: ABA is defined).
+std::vector<int> joints_blocking_aba(const Model<double>& model);
+
 }  // namespace dyngen::gen

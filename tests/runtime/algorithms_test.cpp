@@ -135,11 +135,7 @@ std::vector<Case> cases() {
                  }, 6});
   for (const test::RobotFile& robot : test::robot_files()) {
     all.push_back({robot.name, [=] { return test::load_for_aba(robot); }, 7});
-    all.push_back({robot.name + "_floating", [=] {
-                     gen::LoadOptions options = robot.aba_options;
-                     options.floating_base = true;
-                     return gen::load_robot(robot.path, options).model;
-                   }, 8});
+    all.push_back({robot.name + "_floating", [=] { return test::load_for_aba(robot, true); }, 8});
   }
   return all;
 }

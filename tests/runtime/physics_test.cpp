@@ -21,6 +21,7 @@ using Vector = Eigen::VectorXd;
 using Vector3 = Eigen::Vector3d;
 using Matrix3 = Eigen::Matrix3d;
 using test::dense;
+using test::view;
 
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
@@ -88,11 +89,7 @@ std::vector<Case> cases() {
   std::vector<Case> all;
   for (const test::RobotFile& robot : test::robot_files()) {
     all.push_back({robot.name, [=] { return test::load_for_aba(robot); }});
-    all.push_back({robot.name + "_floating", [=] {
-                     gen::LoadOptions options = robot.aba_options;
-                     options.floating_base = true;
-                     return gen::load_robot(robot.path, options).model;
-                   }});
+    all.push_back({robot.name + "_floating", [=] { return test::load_for_aba(robot, true); }});
   }
   all.push_back(
       {"planar5", [] { return gen::load_robot(test::model_path("planar5.yaml")).model; }});
@@ -161,9 +158,6 @@ TEST_P(Physics, RuntimeEnergiesMatchWorldKinematics) {
 // magnitude to spare, while a missing or mis-signed term is off by a large fraction of it.
 constexpr double fd_h = 1e-8;
 constexpr double fd_tol = 1e-4;
-
-std::span<const double> view(const Vector& x) { return {x.data(), std::size_t(x.size())}; }
-std::span<double> view(Vector& x) { return {x.data(), std::size_t(x.size())}; }
 
 /// q moved by dt along velocity v: q + dt qdot(q, v), back on unit quaternions. A smooth curve
 /// through q with tangent v, which is all that central differences and RK4 need.

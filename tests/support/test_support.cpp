@@ -149,8 +149,10 @@ std::vector<RobotFile> robot_files() {
   return robots;
 }
 
-Model<double> load_for_aba(const RobotFile& robot) {
-  return gen::load_robot(robot.path, robot.aba_options).model;
+Model<double> load_for_aba(const RobotFile& robot, bool floating_base) {
+  gen::LoadOptions options = robot.aba_options;
+  options.floating_base = floating_base;
+  return gen::load_robot(robot.path, options).model;
 }
 
 }  // namespace dyngen::test

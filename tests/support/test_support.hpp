@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -91,8 +92,8 @@ struct RobotFile {
 /// Every URDF in tests/models, in alphabetical order.
 std::vector<RobotFile> robot_files();
 
-/// Loads a robot file with its ABA options.
-Model<double> load_for_aba(const RobotFile& robot);
+/// Loads a robot file with its ABA options, on a floating base if asked.
+Model<double> load_for_aba(const RobotFile& robot, bool floating_base = false);
 
 // ---- dense definitions (Featherstone's spatial_v2), independent of the runtime's kernels ----
 
@@ -184,6 +185,19 @@ Matrix6<S> crf(const Vector6<S>& v) {
 }
 
 /// A std::vector as an Eigen vector (a copy).
+/// A span over an Eigen vector, for the runtime's functions.
+inline std::span<const double> view(const Eigen::VectorXd& x) {
+  return {x.data(), static_cast<std::size_t>(x.size())};
+}
+inline std::span<double> view(Eigen::VectorXd& x) {
+  return {x.data(), static_cast<std::size_t>(x.size())};
+}
+
+/// ||x - reference|| / ||reference||, Euclidean (Frobenius for matrices).
+inline double relative_error(const Eigen::MatrixXd& x, const Eigen::MatrixXd& reference) {
+  return (x - reference).norm() / reference.norm();
+}
+
 template <class S>
 Eigen::Matrix<S, Eigen::Dynamic, 1> to_eigen(const std::vector<S>& x) {
   return Eigen::Map<const Eigen::Matrix<S, Eigen::Dynamic, 1>>(x.data(), x.size());

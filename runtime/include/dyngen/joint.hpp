@@ -94,14 +94,11 @@ void joint_project(const Model<S>& model, int i, const Force<S>& f, S* out) {
   }
 }
 
-/// S tau: the joint's entries of tau as a spatial force
+/// S tau: the joint's entries of tau as a spatial force (S maps them as it maps velocities)
 template <class S>
 Force<S> joint_force(const Model<S>& model, int i, const S* tau) {
-  if (model.joint_type[i] == JointType::Free)
-    return {{tau[3], tau[4], tau[5]}, {tau[0], tau[1], tau[2]}};
-  const Vec3<S> n = scale(model.joint_axis[i], tau[0]);
-  if (is_revolute(model.joint_type[i])) return {n, {}};
-  return {{}, n};
+  const Motion<S> m = joint_motion(model, i, tau);
+  return {m.ang, m.lin};
 }
 
 }  // namespace dyngen

@@ -37,14 +37,6 @@ constexpr const char* algorithm_names[] = {"RNEA", "CRBA", "ABA"};
 enum Solver { Tree, Chain };
 constexpr const char* solver_names[] = {"tree", "chain"};
 
-std::span<const double> in(const Eigen::VectorXd& x) { return {x.data(), std::size_t(x.size())}; }
-std::span<double> out(Eigen::VectorXd& x) { return {x.data(), std::size_t(x.size())}; }
-
-/// ||x - reference|| / ||reference|| (Frobenius norm for matrices)
-double relative_error(const Eigen::MatrixXd& x, const Eigen::MatrixXd& reference) {
-  return (x - reference).norm() / reference.norm();
-}
-
 /// The largest relative error of one algorithm over the seeded random states (NaN if any is).
 double largest_error(Algorithm algorithm, const Model<double>& model, Dynamics& kdl) {
   Workspace<double> ws(model);
@@ -56,20 +48,20 @@ double largest_error(Algorithm algorithm, const Model<double>& model, Dynamics& 
     switch (algorithm) {
       case Rnea: {
         Eigen::VectorXd tau(model.nv);
-        rnea<double>(model, ws, in(s.q), in(s.v), in(s.a), out(tau));
+        rnea<double>(model, ws, view(s.q), view(s.v), view(s.a), view(tau));
         error = relative_error(s.G.transpose() * tau, kdl.inverse(s.q_kdl, s.qd_kdl, s.qdd_kdl));
         break;
       }
       case Crba: {
         Eigen::VectorXd M(model.nv * model.nv);  // row-major, symmetric
-        crba<double>(model, ws, in(s.q), out(M));
+        crba<double>(model, ws, view(s.q), view(M));
         const Eigen::MatrixXd M_dyngen = M.reshaped<Eigen::RowMajor>(model.nv, model.nv);
         error = relative_error(s.G.transpose() * M_dyngen * s.G, kdl.mass_matrix(s.q_kdl));
         break;
       }
       case Aba: {
         Eigen::VectorXd a(model.nv);
-        aba<double>(model, ws, in(s.q), in(s.v), in(s.tau), out(a));
+        aba<double>(model, ws, view(s.q), view(s.v), view(s.tau), view(a));
         const Eigen::VectorXd qdd_kdl = kdl.forward(s.q_kdl, s.qd_kdl, s.G.transpose() * s.tau);
         error = relative_error(a, s.G * qdd_kdl + s.Gdot_qd);
         break;

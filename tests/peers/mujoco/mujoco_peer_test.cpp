@@ -53,11 +53,6 @@ gen::Robot load(const Case& c) {
   return gen::load_robot(c.robot.path, options);
 }
 
-/// ||x - reference|| / ||reference||, Euclidean (Frobenius for matrices).
-double relative_error(const std::vector<double>& x, const std::vector<double>& reference) {
-  return (to_eigen(x) - to_eigen(reference)).norm() / to_eigen(reference).norm();
-}
-
 // ---- the table of largest errors, printed when the program ends ---------------------------
 
 struct Row {
@@ -150,9 +145,11 @@ TEST_P(MujocoPeer, DynamicsMatch) {
     crba<double>(model, ws, s.q, M);
     rnea<double>(model, ws, s.q, s.qd, s.qdd, tau);
     aba<double>(model, ws, s.q, s.qd, s.tau, qdd);
-    row.crba = std::max(row.crba, relative_error(M, peer.crba(s.q)));
-    row.rnea = std::max(row.rnea, relative_error(tau, peer.rnea(s.q, s.qd, s.qdd)));
-    row.aba = std::max(row.aba, relative_error(qdd, peer.aba(s.q, s.qd, s.tau)));
+    row.crba = std::max(row.crba, relative_error(to_eigen(M), to_eigen(peer.crba(s.q))));
+    row.rnea =
+        std::max(row.rnea, relative_error(to_eigen(tau), to_eigen(peer.rnea(s.q, s.qd, s.qdd))));
+    row.aba =
+        std::max(row.aba, relative_error(to_eigen(qdd), to_eigen(peer.aba(s.q, s.qd, s.tau))));
   }
   EXPECT_LE(row.crba, tolerance);
   EXPECT_LE(row.rnea, tolerance);
