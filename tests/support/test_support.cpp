@@ -47,22 +47,6 @@ Vec3<double> random_axis(Random& rng) {
 
 }  // namespace
 
-std::vector<double> random_unit_quaternion(Random& rng) {
-  for (;;) {
-    // uniform in the unit ball, away from 0, then normalised: uniform on the sphere
-    const double w = rng.uniform(-1, 1), x = rng.uniform(-1, 1), y = rng.uniform(-1, 1),
-                 z = rng.uniform(-1, 1);
-    const double norm = std::sqrt(w * w + x * x + y * y + z * z);
-    if (norm > 0.1 && norm <= 1) return {w / norm, x / norm, y / norm, z / norm};
-  }
-}
-
-std::vector<double> Random::vector(int n, double lo, double hi) {
-  std::vector<double> x(n);
-  for (double& xi : x) xi = uniform(lo, hi);
-  return x;
-}
-
 Model<double> make_random_chain(int n, std::uint64_t seed, bool planar) {
   Random rng(seed);
   ModelBuilder builder;
@@ -111,23 +95,6 @@ Model<double> make_random_chain(int n, std::uint64_t seed, bool planar) {
     parent = link.name;
   }
   return builder.build(planar ? Vec3<double>{0, -9.81, 0} : Vec3<double>{0, 0, -9.81});
-}
-
-State random_state(const Model<double>& model, Random& rng) {
-  State s;
-  for (int i = 0; i < model.nbodies; ++i) {
-    if (model.joint_type[i] != JointType::Free) {
-      s.q.push_back(rng.uniform(-pi, pi));
-      continue;
-    }
-    for (int k = 0; k < 3; ++k) s.q.push_back(rng.uniform(-1, 1));
-    const std::vector<double> w = random_unit_quaternion(rng);
-    s.q.insert(s.q.end(), w.begin(), w.end());
-  }
-  s.qd = rng.vector(model.nv, -2, 2);
-  s.qdd = rng.vector(model.nv, -2, 2);
-  s.tau = rng.vector(model.nv, -5, 5);
-  return s;
 }
 
 std::string model_path(const std::string& file) {

@@ -1,49 +1,25 @@
 // Helpers shared by the test suites (runtime, generator, generated code): seeded random
-// numbers built from raw std::mt19937_64 bits, random chains built through the runtime's
-// ModelBuilder, random states, the shared robot files, and a heap-allocation counter.
+// numbers and states (dyngen/numerics/random.hpp), random chains built through the runtime's
+// ModelBuilder, the shared robot files, dense spatial algebra and a heap-allocation counter.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
-#include <random>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "dyngen/model.hpp"
+#include "dyngen/numerics/random.hpp"
 #include "robot.hpp"
 
 namespace dyngen::test {
 
-/// Deterministic random numbers: the same on every standard library, because doubles are
-/// built from the raw 64-bit output of std::mt19937_64 (whose sequence the standard fixes)
-/// instead of std::uniform_real_distribution (whose algorithm it does not).
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-
-  /// Raw 64 random bits.
-  std::uint64_t bits() { return engine_(); }
-
-  /// Uniform in [0, 1): the top 53 bits scaled by 2^-53, so every value is exact.
-  double uniform() { return static_cast<double>(bits() >> 11) * 0x1.0p-53; }
-
-  /// Uniform between lo and hi (hi itself only through rounding).
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-
-  /// Uniform integer in [0, n), n > 0 (the modulo bias is below 2^-40 for small n).
-  int index(int n) { return static_cast<int>(bits() % static_cast<std::uint64_t>(n)); }
-
-  /// True with probability p.
-  bool chance(double p) { return uniform() < p; }
-
-  /// n values uniform between lo and hi.
-  std::vector<double> vector(int n, double lo, double hi);
-
- private:
-  std::mt19937_64 engine_;
-};
+using numerics::Random;
+using numerics::random_state;
+using numerics::random_unit_quaternion;
+using numerics::State;
 
 /// A random serial chain of n links built through dyngen::ModelBuilder, the same for the same
 /// seed.
@@ -57,18 +33,6 @@ class Random {
 /// Both: masses in [0.2, 3) kg; rotational inertias positive definite and satisfying the
 /// triangle inequality (they are those of a box-shaped mass distribution), in a random frame.
 Model<double> make_random_chain(int n, std::uint64_t seed, bool planar);
-
-/// A random state for a model: q has model.nq entries, the others model.nv.
-struct State {
-  std::vector<double> q, qd, qdd, tau;
-};
-
-/// A unit quaternion (w, x, y, z), uniformly distributed over rotations.
-std::vector<double> random_unit_quaternion(Random& rng);
-
-/// q in [-pi, pi], qd and qdd in [-2, 2], tau in [-5, 5] (the same numbers in metres for
-/// prismatic joints); a free joint's position in [-1, 1] m and a random unit quaternion.
-State random_state(const Model<double>& model, Random& rng);
 
 /// The same values in another scalar type.
 template <class T>

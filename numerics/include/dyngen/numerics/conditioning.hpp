@@ -1,0 +1,138 @@
+// How hard a robot's dynamics are for floating-point arithmetic, estimated over sampled
+// states: the condition number of the mass matrix, the smallest ABA pivot D_i relative to the
+// articulated inertia it is taken from, and the dynamic range of the model's numbers. All of it
+// is computed in long double, so that the estimate is not limited by the double arithmetic it
+// judges.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "dyngen/aba.hpp"
+#include "dyngen/crba.hpp"
+#include "dyngen/numerics/random.hpp"
+
+namespace dyngen::numerics {
+
+using MatrixL = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+
+struct Conditioning {
+  int samples = 0;
+  double cond_M_median = 0;  // lambda_max / lambda_min of M(q), median over the samples
+  double cond_M_max = 0;     // ... largest
+  double pivot_min = 1;      // smallest D_i / max|IA_i| over joints and samples (ABA)
+  std::string pivot_joint;   // the joint where it was found
+  double inertia_range = 1;  // largest / smallest max|IA_i| over bodies and samples (ABA)
+  int float_unrepresentable = 0;  // non-zero model constants outside float's normal range
+
+  /// Decimal digits that rounding errors may be amplified by: log10 of the larger of cond(M)
+  /// and 1 / pivot_min.
+  double digits_lost() const { return std::log10(std::max(cond_M_max, 1.0 / pivot_min)); }
+};
+
+/// Decimal digits of a scalar type's unit roundoff: 15.95 for double, 7.22 for float.
+template <class S>
+double digits_of() {
+  return -std::log10(std::numeric_limits<S>::epsilon() / 2);
+}
+
+/// cond_2(M) of a symmetric positive definite matrix: lambda_max(M) * lambda_max(M^-1), with
+/// M^-1 from an LDL^T factorisation, which keeps the small eigenvalues of graded matrices (a
+/// heavy base with light tips) that an eigensolver on M would lose in lambda_max's rounding.
+/// +inf when M is not numerically positive definite.
+inline double condition_number(const MatrixL& M) {
+  const Eigen::LDLT<MatrixL> ldlt(M);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
+      (ldlt.vectorD().array() <= 0).any())
+    return std::numeric_limits<double>::infinity();
+  const MatrixL Minv = ldlt.solve(MatrixL::Identity(M.rows(), M.cols()));
+  const Eigen::SelfAdjointEigenSolver<MatrixL> eig(M, Eigen::EigenvaluesOnly);
+  const Eigen::SelfAdjointEigenSolver<MatrixL> eig_inv(Minv, Eigen::EigenvaluesOnly);
+  const long double cond = eig.eigenvalues().maxCoeff() * eig_inv.eigenvalues().maxCoeff();
+  return std::isfinite(cond) && cond > 0 ? static_cast<double>(cond)
+                                         : std::numeric_limits<double>::infinity();
+}
+
+namespace detail {
+
+template <class S>
+S max_abs(const ArticulatedInertia<S>& A) {
+  using std::abs;
+  S m = 0;
+  for (const S& x : {A.I.xx, A.I.yy, A.I.zz, A.I.xy, A.I.xz, A.I.yz, A.H.xx, A.H.xy, A.H.xz,
+                     A.H.yx, A.H.yy, A.H.yz, A.H.zx, A.H.zy, A.H.zz, A.M.xx, A.M.yy, A.M.zz,
+                     A.M.xy, A.M.xz, A.M.yz})
+    m = std::max(m, abs(x));
+  return m;
+}
+
+inline int count_float_unrepresentable(const Model<double>& model) {
+  int count = 0;
+  const auto check = [&](double x) {
+    const double a = std::abs(x);
+    if (a != 0 && (a < std::numeric_limits<float>::min() || a > std::numeric_limits<float>::max()))
+      ++count;
+  };
+  for (int i = 0; i < model.nbodies; ++i) {
+    const Mat3<double>& E = model.X_tree[i].E;
+    for (double x : {E.xx, E.xy, E.xz, E.yx, E.yy, E.yz, E.zx, E.zy, E.zz}) check(x);
+    const Vec3<double>& r = model.X_tree[i].r;
+    const RigidInertia<double>& I = model.I[i];
+    for (double x : {r.x, r.y, r.z, I.m, I.h.x, I.h.y, I.h.z, I.I.xx, I.I.yy, I.I.zz, I.I.xy,
+                     I.I.xz, I.I.yz})
+      check(x);
+  }
+  return count;
+}
+
+}  // namespace detail
+
+/// Samples `samples` random states (random_state with `seed`) and measures the model's
+/// conditioning at each. ABA's pivots are measured only if `with_aba` (ABA is undefined when a
+/// joint moves no inertia).
+inline Conditioning estimate_conditioning(const Model<double>& model, int samples,
+                                          std::uint64_t seed, bool with_aba = true) {
+  Conditioning c;
+  c.samples = samples;
+  c.float_unrepresentable = detail::count_float_unrepresentable(model);
+  const Model<long double> ml = model.cast<long double>();
+  Workspace<long double> ws(ml);
+  Random rng(seed);
+  std::vector<double> conds;
+  long double inertia_max = 0, inertia_min = std::numeric_limits<long double>::infinity();
+  for (int s = 0; s < samples; ++s) {
+    const State state = random_state(model, rng);
+    const std::vector<long double> q(state.q.begin(), state.q.end());
+    const std::vector<long double> qd(state.qd.begin(), state.qd.end());
+    const std::vector<long double> tau(state.tau.begin(), state.tau.end());
+    std::vector<long double> M(static_cast<std::size_t>(ml.nv) * ml.nv), qdd(ml.nv);
+    crba<long double>(ml, ws, q, M);
+    conds.push_back(condition_number(Eigen::Map<const MatrixL>(M.data(), ml.nv, ml.nv)));
+
+    if (!with_aba) continue;
+    aba<long double>(ml, ws, q, qd, tau, qdd);
+    for (int i = 0; i < ml.nbodies; ++i) {
+      const long double size = detail::max_abs(ws.IA[i]);
+      inertia_max = std::max(inertia_max, size);
+      inertia_min = std::min(inertia_min, size);
+      if (ml.joint_type[i] == JointType::Free) continue;
+      const double pivot = size > 0 ? static_cast<double>(ws.D[i] / size) : 0.0;
+      if (pivot < c.pivot_min) c.pivot_min = pivot, c.pivot_joint = ml.joint_name[i];
+    }
+  }
+  std::sort(conds.begin(), conds.end());
+  if (!conds.empty()) {
+    c.cond_M_median = conds[conds.size() / 2];
+    c.cond_M_max = conds.back();
+  }
+  if (inertia_min > 0) c.inertia_range = static_cast<double>(inertia_max / inertia_min);
+  else if (inertia_max > 0) c.inertia_range = std::numeric_limits<double>::infinity();
+  return c;
+}
+
+}  // namespace dyngen::numerics

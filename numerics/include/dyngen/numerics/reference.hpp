@@ -1,0 +1,118 @@
+// The truth for every error figure: the runtime's own algorithms instantiated with MPFR
+// numbers (mpfr::mpreal, 256 bits by default), on the double model converted exactly.
+//
+// Errors are norm-wise and relative: ||x - x_ref||_2 / max(||x_ref||_2, error_floor), with the
+// difference and the norms taken in the exact type, so that the error of a float or double
+// result is measured without rounding of its own.
+#pragma once
+
+#include <mpreal.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "dyngen/aba.hpp"
+#include "dyngen/crba.hpp"
+#include "dyngen/numerics/random.hpp"
+#include "dyngen/rnea.hpp"
+
+namespace dyngen::numerics {
+
+using Exact = mpfr::mpreal;
+
+/// Bits of the exact type's significand: far beyond double's 53, so that the reference's own
+/// rounding stays below 1e-60 relative even where double loses every digit.
+inline constexpr int exact_bits = 256;
+
+/// The absolute floor of the relative error's denominator, in the output's units (N m, kg m^2,
+/// rad/s^2): it only keeps an exactly zero reference from dividing by zero.
+inline constexpr double error_floor = 1e-300;
+
+template <class S>
+std::vector<Exact> widen(std::span<const S> x) {
+  std::vector<Exact> out;
+  out.reserve(x.size());
+  for (const S& xi : x) out.emplace_back(static_cast<double>(xi));
+  return out;
+}
+
+/// The runtime on MPFR numbers, for one model. Setting up sets MPFR's default precision to
+/// `bits` (mpreal numbers take it when they are made).
+class ExactDynamics {
+ public:
+  explicit ExactDynamics(const Model<double>& model, int bits = exact_bits)
+      : model_(cast_with_precision(model, bits)), ws_(model_) {}
+
+  const Model<Exact>& model() const { return model_; }
+
+  std::vector<Exact> rnea(std::span<const double> q, std::span<const double> qd,
+                          std::span<const double> qdd) {
+    std::vector<Exact> tau(model_.nv);
+    const std::vector<Exact> eq = widen(q), eqd = widen(qd), eqdd = widen(qdd);
+    dyngen::rnea<Exact>(model_, ws_, eq, eqd, eqdd, tau);
+    return tau;
+  }
+
+  std::vector<Exact> crba(std::span<const double> q) {
+    std::vector<Exact> M(static_cast<std::size_t>(model_.nv) * model_.nv);
+    const std::vector<Exact> eq = widen(q);
+    dyngen::crba<Exact>(model_, ws_, eq, M);
+    return M;
+  }
+
+  std::vector<Exact> aba(std::span<const double> q, std::span<const double> qd,
+                         std::span<const double> tau) {
+    std::vector<Exact> qdd(model_.nv);
+    const std::vector<Exact> eq = widen(q), eqd = widen(qd), etau = widen(tau);
+    dyngen::aba<Exact>(model_, ws_, eq, eqd, etau, qdd);
+    return qdd;
+  }
+
+ private:
+  static Model<Exact> cast_with_precision(const Model<double>& model, int bits) {
+    mpfr::mpreal::set_default_prec(bits);
+    return model.cast<Exact>();
+  }
+
+  Model<Exact> model_;
+  Workspace<Exact> ws_;
+};
+
+/// Rounds exact values to double.
+inline std::vector<double> to_double(const std::vector<Exact>& x) {
+  std::vector<double> out;
+  out.reserve(x.size());
+  for (const Exact& xi : x) out.push_back(xi.toDouble());
+  return out;
+}
+
+/// ||x - ref||_2 / max(||ref||_2, error_floor), taken exactly; +inf when x is not finite.
+template <class S>
+double relative_error(std::span<const S> x, std::span<const Exact> ref) {
+  Exact diff = 0, norm = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (!std::isfinite(static_cast<double>(x[k]))) return std::numeric_limits<double>::infinity();
+    const Exact d = Exact(static_cast<double>(x[k])) - ref[k];
+    diff += d * d;
+    norm += ref[k] * ref[k];
+  }
+  const Exact floor = error_floor;
+  return (mpfr::sqrt(diff) / std::max(mpfr::sqrt(norm), floor)).toDouble();
+}
+
+template <class S>
+double relative_error(const std::vector<S>& x, const std::vector<Exact>& ref) {
+  return relative_error(std::span<const S>(x), std::span<const Exact>(ref));
+}
+
+/// A state whose torques are the exact inverse dynamics of its (q, qd, qdd), rounded to
+/// double: forward dynamics then has an answer of the scale of qdd on any robot, however
+/// light or heavy its links.
+inline void set_consistent_torques(ExactDynamics& exact, State& s) {
+  s.tau = to_double(exact.rnea(s.q, s.qd, s.qdd));
+}
+
+}  // namespace dyngen::numerics
