@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "dyngen/numerics/conditioning.hpp"
 #include "emit.hpp"
 #include "robot.hpp"
 #include "trace.hpp"
@@ -17,6 +18,7 @@ struct GenerateOptions {
   std::vector<Algorithm> algorithms{Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba};
   bool single_precision = false;        // float instead of double
   std::string options_text;             // the options as given, for the banner
+  int conditioning_samples = 16;        // sampled states of the conditioning estimate
 };
 
 struct FunctionCounts {
@@ -33,10 +35,21 @@ struct GeneratedFile {
 struct Generated {
   std::vector<GeneratedFile> files;
   std::vector<FunctionCounts> counts;
+  numerics::Conditioning conditioning;
+  std::string conditioning_text;      // as the banner records it
+  std::vector<std::string> warnings;  // digits the generated scalar is expected to lose
 };
+
+/// Correct decimal digits below which dyngen warns that the generated scalar is not enough
+/// (the estimate of numerics::Conditioning::aba_digits_lost, or constants outside float's range).
+inline constexpr double min_float_digits = 3, min_double_digits = 6;
 
 /// A valid C++ identifier from a robot name ("my-robot" -> "my_robot").
 std::string identifier(const std::string& name);
+
+/// The conditioning estimate in words (the ABA lines only if with_aba), as the banner and
+/// dyngen report record it.
+std::string conditioning_text(const numerics::Conditioning& c, bool with_aba);
 
 /// Traces, simplifies and prints every requested algorithm. Throws InputError when ABA is
 /// requested for a robot with a joint that moves no mass.

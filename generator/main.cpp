@@ -10,6 +10,7 @@
 
 #include "eval.hpp"
 #include "generate.hpp"
+#include "report.hpp"
 
 using namespace dyngen;
 using namespace dyngen::gen;
@@ -140,14 +141,67 @@ int eval_main(int argc, char** argv) {
   return 0;
 }
 
+/// dyngen report ROBOT -o DIR: error against run time of every variant, as Markdown, JSON and a
+/// plot.
+int report_main(int argc, char** argv) {
+  CLI::App app{"dyngen report: measures the error (against an MPFR reference) and the run time "
+               "of the runtime and the generated code in double and float, with FMA and with "
+               "-ffast-math, and of CRBA+LDLT, and writes report.md, report.json and report.svg"};
+  app.name("dyngen report");
+  std::string input, output, algorithms = "rnea,crba,aba";
+  ModelFlags flags;
+  ReportOptions options;
+  app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
+  app.add_option("-o,--output", output,
+                 "output directory (created if missing); the harness is built in DIR/harness")
+      ->required();
+  app.add_option("--algorithms", algorithms, "comma-separated subset of rnea,crba,aba")
+      ->capture_default_str();
+  app.add_option("--states", options.states, "random states for the errors")
+      ->check(CLI::Range(1, 10000000))
+      ->capture_default_str();
+  app.add_option("--seed", options.seed, "seed of the random states")->capture_default_str();
+  app.add_option("--min-time", options.min_time, "seconds per benchmark repetition")
+      ->check(CLI::Range(0.001, 60.0))
+      ->capture_default_str();
+  app.add_option("--repetitions", options.repetitions,
+                 "benchmark repetitions; the time reported is their median")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  flags.add_to(app);
+  app.add_flag("-q,--quiet", options.quiet, "print errors and warnings only");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    options.algorithms = parse_algorithms(algorithms);
+    options.model_flags = flags.text();
+    options.package_dir = package_dir();
+    options.command = "dyngen report";
+    for (int k = 1; k < argc; ++k) options.command += " " + std::string(argv[k]);
+    if (!options.quiet) fmt::print("dyngen {} report: reading {}\n", version, input);
+    const Robot robot = load_robot(input, flags.load_options());
+    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
+    make_report(robot, options, output);
+  } catch (const InputError& e) {
+    fmt::print(stderr, "dyngen report: error: {}\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "dyngen report: error: {}\n", e.what());
+    return 2;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string_view(argv[1]) == "eval") return eval_main(argc - 1, argv + 1);
+  if (argc > 1 && std::string_view(argv[1]) == "report") return report_main(argc - 1, argv + 1);
   CLI::App app{"dyngen: generates unrolled, allocation-free C++ for the inverse dynamics (RNEA), "
                "mass matrix (CRBA) and forward dynamics (ABA) of one robot.\n"
                "dyngen eval ROBOT --states FILE: the runtime's results at given states, as JSON "
-               "(dyngen eval --help)"};
+               "(dyngen eval --help)\n"
+               "dyngen report ROBOT -o DIR: error against run time of every variant "
+               "(dyngen report --help)"};
   std::string input, output, algorithms = "rnea,crba,aba", scalar = "double", name;
   ModelFlags flags;
   bool quiet = false;
@@ -192,6 +246,7 @@ int main(int argc, char** argv) {
     }
     const Generated generated = generate(robot, options);
     write_files(output, generated.files);
+    for (const std::string& w : generated.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
 
     if (!quiet) {
       fmt::print("operations per call, generated vs runtime (add+sub, mul, div, neg, sin, cos):\n");
@@ -200,6 +255,7 @@ int main(int argc, char** argv) {
                    algorithm_name(c.algorithm), c.generated.total(), c.runtime.total(),
                    100.0 * (1.0 - double(c.generated.total()) / double(c.runtime.total())),
                    to_string(c.generated));
+      fmt::print("{}\n", generated.conditioning_text);
       fmt::print("wrote {} files to {}:", generated.files.size(), output);
       for (const GeneratedFile& f : generated.files) fmt::print(" {}", f.name);
       fmt::print("\nbuild and check it against the runtime:\n"

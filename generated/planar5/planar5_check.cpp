@@ -8,6 +8,10 @@
 //         runtime:   add 609, mul 784, div 0, neg 0, sin 4, cos 4
 //   aba   generated: add 172, mul 186, div 14, neg 32, sin 4, cos 4
 //         runtime:   add 1708, mul 1987, div 29, neg 18, sin 4, cos 4
+// Conditioning over 16 sampled states (docs/numerics.md):
+//   cond(M) median 6.7e+02, max 2.6e+03: a relative change of tau or M can change qdd up to that many times
+//   smallest ABA pivot D/max|IA| 0.025 (joint 'link1_joint'), articulated inertias span 81:
+//   ABA may lose 1.6 digits, keeping about 14.3 in double and 5.6 in float
 // Checks every generated function against the dyngen runtime bit for bit (+0 and -0 count as
 // equal) on 10000 seeded random states and 2000 extreme ones (angles up
 // to 1e6 rad, speeds up to 1e3 rad/s). On failure it prints the first differing output.

@@ -8,6 +8,10 @@
 //         runtime:   add 801, mul 1038, div 0, neg 0, sin 6, cos 6
 //   aba   generated: add 547, mul 713, div 24, neg 63, sin 5, cos 5
 //         runtime:   add 2106, mul 2451, div 36, neg 21, sin 6, cos 6
+// Conditioning over 16 sampled states (docs/numerics.md):
+//   cond(M) median 1.7e+02, max 2.9e+02: a relative change of tau or M can change qdd up to that many times
+//   smallest ABA pivot D/max|IA| 0.026 (joint 'shoulder_pan_joint'), articulated inertias span 90:
+//   ABA may lose 1.6 digits, keeping about 14.4 in double and 5.6 in float
 #pragma once
 
 /// Dynamics of robot 'ur5', specialised by dyngen: fully unrolled, no heap, no exceptions,

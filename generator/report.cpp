@@ -1,0 +1,296 @@
+#include "report.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "template.hpp"
+
+namespace dyngen::gen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (const char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return out + "'";
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot write", path.string()));
+}
+
+/// Runs a shell command with its output in log (and echoed, indented, if echo); throws with the
+/// log's last lines when it fails.
+void run(const std::string& what, const std::string& command, const fs::path& log, bool echo) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) throw std::runtime_error(fmt::format("{}: cannot start '{}'", what, command));
+  std::ofstream out(log, std::ios::binary);
+  std::vector<std::string> tail;
+  char line[4096];
+  while (std::fgets(line, sizeof line, pipe)) {
+    out << line;
+    if (echo) fmt::print("  {}", line), std::fflush(stdout);
+    tail.emplace_back(line);
+    if (tail.size() > 30) tail.erase(tail.begin());
+  }
+  const int status = pclose(pipe);
+  if (status != 0) {
+    std::string last;
+    for (const std::string& l : tail) last += "  " + l;
+    throw std::runtime_error(fmt::format("{} failed (exit status {}); the end of {}:\n{}", what,
+                                         status, log.string(), last));
+  }
+}
+
+bool has(const std::vector<Algorithm>& algorithms, Algorithm a) {
+  return std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end();
+}
+
+/// The generated code of one variant into dir/harness/<variant>.
+void write_variant(const Robot& robot, const ReportOptions& options, const std::string& name,
+                   bool single, const fs::path& dir, bool with_model) {
+  GenerateOptions g;
+  g.name = name;
+  g.algorithms = options.algorithms;
+  g.single_precision = single;
+  g.options_text = options.model_flags;
+  const Generated generated = generate(robot, g);
+  std::vector<GeneratedFile> files;
+  for (const GeneratedFile& f : generated.files)
+    if (f.name == name + "_dynamics.hpp" || f.name == name + "_dynamics.cpp" ||
+        (with_model && f.name == name + "_model.hpp"))
+      files.push_back(f);
+  write_files(dir.string(), files);
+}
+
+const char* algorithm_title(const std::string& a) {
+  if (a == "rnea") return "RNEA (inverse dynamics, tau)";
+  if (a == "crba") return "CRBA (mass matrix, M)";
+  return "ABA (forward dynamics, qdd)";
+}
+
+/// The speed-up of each result over the runtime of its algorithm and scalar type (CRBA+LDLT:
+/// over the runtime's ABA).
+void add_speed_ups(nlohmann::json& results) {
+  for (nlohmann::json& r : results) {
+    const std::string baseline = "runtime " + r["scalar"].get<std::string>();
+    for (const nlohmann::json& b : results)
+      if (b["algorithm"] == r["algorithm"] && b["variant"] == baseline)
+        r["speed_up"] = b["median_ns"].get<double>() / r["median_ns"].get<double>();
+  }
+}
+
+std::string markdown_tables(const nlohmann::json& results) {
+  std::string out;
+  for (const char* a : {"rnea", "crba", "aba"}) {
+    std::string rows;
+    for (const nlohmann::json& r : results) {
+      if (r["algorithm"] != a) continue;
+      std::string worst = fmt::format("{:.2g}", r["worst_error"].get<double>());
+      if (r["nonfinite"].get<int>() > 0)
+        worst = fmt::format("{} non-finite", r["nonfinite"].get<int>());
+      rows += fmt::format("| {} | {:.2g} | {} | {:.0f} | {:.2f} |\n", r["variant"].get<std::string>(),
+                          r["median_error"].get<double>(), worst, r["median_ns"].get<double>(),
+                          r["speed_up"].get<double>());
+    }
+    if (rows.empty()) continue;
+    out += fmt::format("## {}\n\n| variant | median error | worst error | median ns | speed-up |\n"
+                       "|---|---:|---:|---:|---:|\n{}\n",
+                       algorithm_title(a), rows);
+  }
+  return out;
+}
+
+/// gnuplot data blocks, one panel per algorithm and a last one with the key. A variant has the
+/// same point style in every panel.
+std::pair<std::string, std::string> plot_parts(const nlohmann::json& results, int& panels) {
+  std::vector<std::string> variants;
+  for (const nlohmann::json& r : results)
+    if (std::find(variants.begin(), variants.end(), r["variant"]) == variants.end())
+      variants.push_back(r["variant"]);
+  std::vector<std::string> panel_data, panel_plots;
+  for (const char* a : {"rnea", "crba", "aba"}) {
+    std::string block, series;
+    double x_lo = 1e300, x_hi = 0, y_lo = 1e300, y_hi = 0;
+    int k = 0;
+    for (const nlohmann::json& r : results) {
+      if (r["algorithm"] != a) continue;
+      const double ns = r["median_ns"].get<double>();
+      const double median = std::max(r["median_error"].get<double>(), 1e-20);
+      const double worst = r["nonfinite"].get<int>() > 0
+                               ? 1.0
+                               : std::max(r["worst_error"].get<double>(), 1e-20);
+      block += fmt::format("{:.6g} {:.6g} {:.6g} {:.6g}\n", ns, median, median, worst);
+      x_lo = std::min(x_lo, ns), x_hi = std::max(x_hi, ns);
+      y_lo = std::min(y_lo, median), y_hi = std::max(y_hi, worst);
+      const auto style = std::find(variants.begin(), variants.end(), r["variant"]) - variants.begin();
+      series += fmt::format(
+          "{}${} every ::{}::{} using 1:2:3:4 with yerrorbars lc {} pt {} ps 1.3 title \"{}\"",
+          k == 0 ? "plot " : ", \\\n     ", a, k, k, style + 1, style + 4,
+          r["variant"].get<std::string>());
+      ++k;
+    }
+    if (k == 0) continue;
+    panel_data.push_back(fmt::format("${} << EOD\n{}EOD\n", a, block));
+    // a margin around the points, so that none sits on the frame
+    panel_plots.push_back(fmt::format("set title \"{}\"\nset xrange [{:.3g}:{:.3g}]\n"
+                                      "set yrange [{:.3g}:{:.3g}]\n{}\n",
+                                      algorithm_title(a), x_lo / 1.5, x_hi * 1.5, y_lo / 10,
+                                      y_hi * 10, series));
+  }
+  std::string data, plots = "unset key\n", key;
+  for (std::size_t p = 0; p < panel_plots.size(); ++p) data += panel_data[p], plots += panel_plots[p];
+  for (std::size_t v = 0; v < variants.size(); ++v)
+    key += fmt::format("{}NaN with points lc {} pt {} ps 1.3 title \"{}\"",
+                       v == 0 ? "plot " : ", \\\n     ", v + 1, v + 4, variants[v]);
+  plots += "unset title\nunset border\nunset tics\nunset grid\nunset xlabel\nunset ylabel\n"
+           "unset logscale\nset xrange [0:1]\nset yrange [0:1]\nset key center center\n" +
+           key + "\n";
+  panels = static_cast<int>(panel_plots.size()) + 1;
+  return {data, plots};
+}
+
+bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+}  // namespace
+
+void make_report(const Robot& robot, const ReportOptions& options, const std::string& dir) {
+  const std::string name = identifier(robot.name);
+  const fs::path out_dir(dir);
+  const fs::path work = out_dir / "harness";
+  fs::create_directories(work);
+  const auto step = [&](int k, const std::string& text) {
+    if (!options.quiet) fmt::print("[{}/5] {}\n", k, text), std::fflush(stdout);
+  };
+
+  step(1, "generating the code: double, float, double for FMA, double for fast-math");
+  write_variant(robot, options, name, false, work / "double", true);
+  write_variant(robot, options, name + "_float", true, work / "float", false);
+  write_variant(robot, options, name + "_fma", false, work / "fma", false);
+  write_variant(robot, options, name + "_fastmath", false, work / "fastmath", false);
+  const std::string banner = fmt::format(
+      "Written by dyngen {} report for robot '{}' ({}); rewritten on every run.", version,
+      robot.name, fs::path(robot.path).filename().string());
+  write_text(work / "CMakeLists.txt",
+             fill("report_CMakeLists.txt.in", {{"banner", "# " + banner}, {"name", name},
+                                                {"robot", robot.name}}));
+  write_text(work / "harness.cpp",
+             fill("report_harness.cpp.in",
+                  {{"banner", "// " + banner},
+                   {"name", name},
+                   {"robot", robot.name},
+                   {"rnea", has(options.algorithms, Algorithm::Rnea) ? "1" : "0"},
+                   {"crba", has(options.algorithms, Algorithm::Crba) ? "1" : "0"},
+                   {"aba", has(options.algorithms, Algorithm::Aba) ? "1" : "0"}}));
+
+  step(2, fmt::format("configuring the harness in {}", work.string()));
+  const fs::path build = work / "build";
+  run("configuring the harness",
+      fmt::format("cmake -S {} -B {} -Ddyngen_DIR={}", quoted(work.string()),
+                  quoted(build.string()), quoted(options.package_dir)),
+      work / "configure.log", false);
+  step(3, "building the harness (the generated code four times; big robots take minutes)");
+  run("building the harness",
+      fmt::format("cmake --build {} -j {}", quoted(build.string()),
+                  std::max(1u, std::thread::hardware_concurrency())),
+      work / "build.log", false);
+
+  step(4, fmt::format("measuring errors on {} states, then timing", options.states));
+  const fs::path results_path = work / "results.json";
+  run("running the harness",
+      fmt::format("{} {} {} {} {} {} {}", quoted((build / (name + "_report")).string()),
+                  options.states, options.seed, options.timed_states, options.min_time,
+                  options.repetitions, quoted(results_path.string())),
+      work / "run.log", !options.quiet);
+
+  step(5, "writing the report");
+  nlohmann::json report;
+  std::ifstream(results_path) >> report;
+  add_speed_ups(report["results"]);
+  const numerics::Conditioning c = numerics::estimate_conditioning(
+      robot.model, 16, 1, has(options.algorithms, Algorithm::Aba));
+  report["dyngen"] = version;
+  report["command"] = options.command;
+  report["robot_file"] = fs::path(robot.path).filename().string();
+  report["sha256"] = robot.sha256;
+  report["conditioning"] = {{"samples", c.samples},
+                            {"cond_M_median", c.cond_M_median},
+                            {"cond_M_max", c.cond_M_max},
+                            {"pivot_min", c.pivot_min},
+                            {"pivot_joint", c.pivot_joint},
+                            {"inertia_range", c.inertia_range},
+                            {"aba_digits_lost", c.aba_digits_lost()},
+                            {"float_unrepresentable", c.float_unrepresentable}};
+
+  const std::string summary = fmt::format(
+      "Robot '{}' from `{}` (sha256 {}): {} joints, nq = {}{}. dyngen {}.\n\n```\n{}\n```",
+      robot.name, report["robot_file"].get<std::string>(), robot.sha256, robot.model.nv,
+      robot.model.nq, options.model_flags.empty() ? "" : ", options" + options.model_flags,
+      version, conditioning_text(c, has(options.algorithms, Algorithm::Aba)));
+  const std::string markdown = fill(
+      "report.md.in",
+      {{"robot", robot.name},
+       {"summary", summary},
+       {"states", std::to_string(report["states"].get<int>())},
+       {"seed", std::to_string(options.seed)},
+       {"floor", fmt::format("{:g}", report["error_floor"].get<double>())},
+       {"bits", std::to_string(report["reference_bits"].get<int>())},
+       {"repetitions", std::to_string(options.repetitions)},
+       {"min_time", fmt::format("{:g}", options.min_time)},
+       {"timed_states", std::to_string(report["timed_states"].get<int>())},
+       {"cpus", std::to_string(report["cpus"].get<int>())},
+       {"mhz", fmt::format("{:.0f}", report["cpu_mhz"].get<double>())},
+       {"tables", markdown_tables(report["results"])},
+       {"svg", "report.svg"},
+       {"command", options.command}});
+  int panels = 0;
+  const auto [data, plots] = plot_parts(report["results"], panels);
+  const std::string script = fill(
+      "report_plot.gp.in",
+      {{"banner", "# " + banner},
+       {"script", "report.gp"},
+       {"width", std::to_string(400 * panels)},
+       {"svg", "report.svg"},
+       {"data", data},
+       {"panels", std::to_string(panels)},
+       {"title", fmt::format("{}: error against time, {} states", robot.name,
+                             report["states"].get<int>())},
+       {"plots", plots}});
+
+  // every file under a temporary name first, then renamed into place
+  const std::string tmp = ".tmp";
+  write_text(out_dir / ("report.md" + tmp), markdown);
+  write_text(out_dir / ("report.json" + tmp), report.dump(2) + "\n");
+  write_text(out_dir / ("report.gp" + tmp), script);
+  std::vector<std::string> written = {"report.md", "report.json", "report.gp"};
+  if (have_gnuplot()) {
+    run("drawing the plot with gnuplot",
+        fmt::format("cd {} && gnuplot -e \"output_file='report.svg{}'\" report.gp{} && "
+                    "test -s report.svg{}",
+                    quoted(out_dir.string()), tmp, tmp, tmp),
+        work / "plot.log", false);
+    written.push_back("report.svg");
+  } else {
+    fmt::print(stderr, "dyngen report: warning: gnuplot not found; no plot drawn (install "
+                       "gnuplot-nox, then run gnuplot report.gp in {})\n", dir);
+  }
+  for (const std::string& f : written) fs::rename(out_dir / (f + tmp), out_dir / f);
+  if (!options.quiet) {
+    fmt::print("{}wrote", markdown_tables(report["results"]));
+    for (const std::string& f : written) fmt::print(" {}", (out_dir / f).string());
+    fmt::print("\n");
+  }
+}
+
+}  // namespace dyngen::gen

@@ -1,0 +1,38 @@
+// dyngen report ROBOT -o DIR: the accuracy and speed of every way dyngen can compute a
+// robot's dynamics (runtime and generated code, double and float, FMA and fast-math, and
+// CRBA+LDLT for forward dynamics), as a Markdown table, JSON and a plot of error against run
+// time. The measuring is done by a harness that dyngen writes, builds with CMake and runs.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "generate.hpp"
+#include "robot.hpp"
+
+namespace dyngen::gen {
+
+struct ReportOptions {
+  std::vector<Algorithm> algorithms{Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba};
+  int states = 1000;           // random states for the errors
+  std::uint64_t seed = 1;
+  int timed_states = 64;       // the benchmarks cycle through the first ones
+  double min_time = 0.2;       // seconds per benchmark repetition
+  int repetitions = 5;         // the time reported is their median
+  std::string model_flags;     // the model options as given, for the report's header
+  std::string command;         // the command line, for the report's footer
+  std::string package_dir;     // where find_package(dyngen) finds this dyngen
+  bool quiet = false;
+};
+
+/// The files dyngen report writes into DIR (besides its work directory DIR/harness).
+inline constexpr const char* report_files[] = {"report.md", "report.json", "report.gp",
+                                               "report.svg"};
+
+/// Generates the variants, builds and runs the harness in dir/harness, and writes the report
+/// files into dir, each whole or not at all. Throws InputError for a robot without ABA when
+/// ABA is asked for, and std::runtime_error when a build or run fails (with its log's end).
+void make_report(const Robot& robot, const ReportOptions& options, const std::string& dir);
+
+}  // namespace dyngen::gen
