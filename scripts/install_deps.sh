@@ -12,7 +12,10 @@ packages=(
   libcli11-dev             # command line
   libssl-dev               # sha256 of the input in the banner
   libgtest-dev             # tests and generated check harnesses
-  nlohmann-json3-dev       # dyngen eval: JSON states in, results out
+  nlohmann-json3-dev       # dyngen eval and report: JSON
+  libmpfrc++-dev libmpfr-dev libgmp-dev  # the MPFR reference (numerics/, dyngen report)
+  libbenchmark-dev         # dyngen report's timings
+  gnuplot-nox              # dyngen report's plot
   libmujoco-dev            # peer comparison (tests/peers/mujoco)
   liborocos-kdl-dev libkdl-parser-dev  # peer comparison (tests/peers/kdl)
 )
