@@ -25,14 +25,19 @@ struct Conditioning {
   int samples = 0;
   double cond_M_median = 0;  // lambda_max / lambda_min of M(q), median over the samples
   double cond_M_max = 0;     // ... largest
-  double pivot_min = 1;      // smallest D_i / max|IA_i| over joints and samples (ABA)
+  double pivot_min = 1;      // smallest D_i / max|IA_i| over joints and samples (ABA); for a
+                             // free joint the smallest eigenvalue of IA_i instead of D_i
   std::string pivot_joint;   // the joint where it was found
   double inertia_range = 1;  // largest / smallest max|IA_i| over bodies and samples (ABA)
   int float_unrepresentable = 0;  // non-zero model constants outside float's normal range
 
   /// Decimal digits that rounding errors may be amplified by: log10 of the larger of cond(M)
-  /// and 1 / pivot_min.
+  /// and 1 / pivot_min. An upper bound for any of the algorithms.
   double digits_lost() const { return std::log10(std::max(cond_M_max, 1.0 / pivot_min)); }
+
+  /// Decimal digits ABA loses to cancellation in its pivots, -log10(pivot_min): the estimate
+  /// that tracks ABA's measured error (docs/numerics.md); 0 when the pivots were not measured.
+  double aba_digits_lost() const { return std::max(0.0, -std::log10(pivot_min)); }
 };
 
 /// Decimal digits of a scalar type's unit roundoff: 15.95 for double, 7.22 for float.
@@ -69,6 +74,21 @@ S max_abs(const ArticulatedInertia<S>& A) {
                      A.M.xy, A.M.xz, A.M.yz})
     m = std::max(m, abs(x));
   return m;
+}
+
+/// The smallest eigenvalue of [I H; H^T M]: the pivot that the LDL^T solve below a free joint
+/// divides by, at its smallest.
+inline long double smallest_eigenvalue(const ArticulatedInertia<long double>& A) {
+  Eigen::Matrix<long double, 6, 6> D;
+  D << A.I.xx, A.I.xy, A.I.xz, A.H.xx, A.H.xy, A.H.xz,  //
+      A.I.xy, A.I.yy, A.I.yz, A.H.yx, A.H.yy, A.H.yz,   //
+      A.I.xz, A.I.yz, A.I.zz, A.H.zx, A.H.zy, A.H.zz,   //
+      A.H.xx, A.H.yx, A.H.zx, A.M.xx, A.M.xy, A.M.xz,   //
+      A.H.xy, A.H.yy, A.H.zy, A.M.xy, A.M.yy, A.M.yz,   //
+      A.H.xz, A.H.yz, A.H.zz, A.M.xz, A.M.yz, A.M.zz;
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix<long double, 6, 6>>(D, Eigen::EigenvaluesOnly)
+      .eigenvalues()
+      .minCoeff();
 }
 
 inline int count_float_unrepresentable(const Model<double>& model) {
@@ -120,8 +140,10 @@ inline Conditioning estimate_conditioning(const Model<double>& model, int sample
       const long double size = detail::max_abs(ws.IA[i]);
       inertia_max = std::max(inertia_max, size);
       inertia_min = std::min(inertia_min, size);
-      if (ml.joint_type[i] == JointType::Free) continue;
-      const double pivot = size > 0 ? static_cast<double>(ws.D[i] / size) : 0.0;
+      const long double D = ml.joint_type[i] == JointType::Free
+                                ? detail::smallest_eigenvalue(ws.IA[i])
+                                : ws.D[i];
+      const double pivot = size > 0 ? static_cast<double>(D / size) : 0.0;
       if (pivot < c.pivot_min) c.pivot_min = pivot, c.pivot_joint = ml.joint_name[i];
     }
   }
