@@ -195,6 +195,12 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
 
 }  // namespace
 
+std::string joint_list(const Model<double>& model, const std::vector<int>& joints) {
+  std::string names;
+  for (const int i : joints) names += (names.empty() ? "'" : ", '") + model.joint_name[i] + "'";
+  return names;
+}
+
 std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
   std::string text = fmt::format(
       "Conditioning over {} sampled states (docs/numerics.md):\n"
@@ -220,19 +226,26 @@ Generated generate(const Robot& robot, const GenerateOptions& options) {
   for (const Algorithm a : options.algorithms)
     if (a == Algorithm::Aba) {
       const std::vector<int> joints = joints_blocking_aba(robot.model);
-      if (joints.empty()) break;
-      std::string names, locks;
-      for (const int i : joints) {
-        names += (names.empty() ? "'" : ", '") + robot.model.joint_name[i] + "'";
-        locks += " --lock " + robot.model.joint_name[i];
+      if (joints.empty()) {
+        const std::vector<int> in_float = joints_blocking_aba_in_float(robot.model);
+        if (options.single_precision && !in_float.empty())
+          throw InputError(fmt::format(
+              "{}: ABA is undefined for this robot in float: once the model's constants are "
+              "rounded to float (some lie below float's range), these joints move no inertia and "
+              "ABA would divide by zero: {}. Generate double (--scalar double), or leave ABA out "
+              "(--algorithms rnea,crba).",
+              robot.path, joint_list(robot.model, in_float)));
+        break;
       }
+      std::string locks;
+      for (const int i : joints) locks += " --lock " + robot.model.joint_name[i];
       throw InputError(fmt::format(
           "{}: ABA is undefined for this robot: {} joint{} move{} no mass (the articulated "
           "inertia about the joint axis is zero, so ABA would divide by zero): {}.\n"
           "Lock them ({}), lock every joint with a massless subtree (--lock-massless), or leave "
           "ABA out (--algorithms rnea,crba); RNEA and CRBA are well defined.",
           robot.path, joints.size(), joints.size() == 1 ? "" : "s", joints.size() == 1 ? "s" : "",
-          names, locks.substr(1)));
+          joint_list(robot.model, joints), locks.substr(1)));
     }
   return options.single_precision ? generate_as<float>(robot, options)
                                   : generate_as<double>(robot, options);

@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <thread>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "dyngen/numerics/reference.hpp"
 #include "template.hpp"
 
 namespace dyngen::gen {
@@ -53,6 +55,11 @@ void run(const std::string& what, const std::string& command, const fs::path& lo
   }
 }
 
+/// A number of the harness's JSON, where an infinite error (a non-finite output) is null.
+double number(const nlohmann::json& j) {
+  return j.is_null() ? std::numeric_limits<double>::infinity() : j.get<double>();
+}
+
 bool has(const std::vector<Algorithm>& algorithms, Algorithm a) {
   return std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end();
 }
@@ -63,6 +70,10 @@ void write_variant(const Robot& robot, const ReportOptions& options, const std::
   GenerateOptions g;
   g.name = name;
   g.algorithms = options.algorithms;
+  // ABA in float is left out where the float model moves no inertia at some joint
+  if (single && !joints_blocking_aba_in_float(robot.model).empty())
+    g.algorithms.erase(std::remove(g.algorithms.begin(), g.algorithms.end(), Algorithm::Aba),
+                       g.algorithms.end());
   g.single_precision = single;
   g.options_text = options.model_flags;
   const Generated generated = generate(robot, g);
@@ -97,11 +108,11 @@ std::string markdown_tables(const nlohmann::json& results) {
     std::string rows;
     for (const nlohmann::json& r : results) {
       if (r["algorithm"] != a) continue;
-      std::string worst = fmt::format("{:.2g}", r["worst_error"].get<double>());
+      std::string worst = fmt::format("{:.2g}", number(r["worst_error"]));
       if (r["nonfinite"].get<int>() > 0)
         worst = fmt::format("{} non-finite", r["nonfinite"].get<int>());
       rows += fmt::format("| {} | {:.2g} | {} | {:.0f} | {:.2f} |\n", r["variant"].get<std::string>(),
-                          r["median_error"].get<double>(), worst, r["median_ns"].get<double>(),
+                          number(r["median_error"]), worst, r["median_ns"].get<double>(),
                           r["speed_up"].get<double>());
     }
     if (rows.empty()) continue;
@@ -127,10 +138,9 @@ std::pair<std::string, std::string> plot_parts(const nlohmann::json& results, in
     for (const nlohmann::json& r : results) {
       if (r["algorithm"] != a) continue;
       const double ns = r["median_ns"].get<double>();
-      const double median = std::max(r["median_error"].get<double>(), 1e-20);
-      const double worst = r["nonfinite"].get<int>() > 0
-                               ? 1.0
-                               : std::max(r["worst_error"].get<double>(), 1e-20);
+      // no correct digit (an error of 1 or more, or a non-finite output) is drawn at 1
+      const double median = std::clamp(number(r["median_error"]), 1e-20, 1.0);
+      const double worst = std::clamp(number(r["worst_error"]), 1e-20, 1.0);
       block += fmt::format("{:.6g} {:.6g} {:.6g} {:.6g}\n", ns, median, median, worst);
       x_lo = std::min(x_lo, ns), x_hi = std::max(x_hi, ns);
       y_lo = std::min(y_lo, median), y_hi = std::max(y_hi, worst);
@@ -174,6 +184,8 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
     if (!options.quiet) fmt::print("[{}/5] {}\n", k, text), std::fflush(stdout);
   };
 
+  const std::vector<int> blocking_in_float = joints_blocking_aba_in_float(robot.model);
+  const bool float_aba = has(options.algorithms, Algorithm::Aba) && blocking_in_float.empty();
   step(1, "generating the code: double, float, double for FMA, double for fast-math");
   write_variant(robot, options, name, false, work / "double", true);
   write_variant(robot, options, name + "_float", true, work / "float", false);
@@ -192,7 +204,8 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
                    {"robot", robot.name},
                    {"rnea", has(options.algorithms, Algorithm::Rnea) ? "1" : "0"},
                    {"crba", has(options.algorithms, Algorithm::Crba) ? "1" : "0"},
-                   {"aba", has(options.algorithms, Algorithm::Aba) ? "1" : "0"}}));
+                   {"aba", has(options.algorithms, Algorithm::Aba) ? "1" : "0"},
+                   {"aba_float", float_aba ? "1" : "0"}}));
 
   step(2, fmt::format("configuring the harness in {}", work.string()));
   const fs::path build = work / "build";
@@ -207,19 +220,21 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
       work / "build.log", false);
 
   step(4, fmt::format("measuring errors on {} states, then timing", options.states));
+  const numerics::Conditioning c = numerics::estimate_conditioning(
+      robot.model, 16, 1, has(options.algorithms, Algorithm::Aba));
   const fs::path results_path = work / "results.json";
   run("running the harness",
-      fmt::format("{} {} {} {} {} {} {}", quoted((build / (name + "_report")).string()),
+      fmt::format("{} {} {} {} {} {} {} {}", quoted((build / (name + "_report")).string()),
                   options.states, options.seed, options.timed_states, options.min_time,
-                  options.repetitions, quoted(results_path.string())),
+                  options.repetitions, numerics::reference_bits(c.aba_digits_lost()),
+                  quoted(results_path.string())),
       work / "run.log", !options.quiet);
 
   step(5, "writing the report");
   nlohmann::json report;
   std::ifstream(results_path) >> report;
   add_speed_ups(report["results"]);
-  const numerics::Conditioning c = numerics::estimate_conditioning(
-      robot.model, 16, 1, has(options.algorithms, Algorithm::Aba));
+  report["robot"] = robot.name;
   report["dyngen"] = version;
   report["command"] = options.command;
   report["robot_file"] = fs::path(robot.path).filename().string();
@@ -233,11 +248,17 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
                             {"aba_digits_lost", c.aba_digits_lost()},
                             {"float_unrepresentable", c.float_unrepresentable}};
 
-  const std::string summary = fmt::format(
+  std::string summary = fmt::format(
       "Robot '{}' from `{}` (sha256 {}): {} joints, nq = {}{}. dyngen {}.\n\n```\n{}\n```",
       robot.name, report["robot_file"].get<std::string>(), robot.sha256, robot.model.nv,
       robot.model.nq, options.model_flags.empty() ? "" : ", options" + options.model_flags,
       version, conditioning_text(c, has(options.algorithms, Algorithm::Aba)));
+  if (has(options.algorithms, Algorithm::Aba) && !float_aba)
+    summary += fmt::format(
+        "\n\nNo generated float ABA: once the model's constants are rounded to float, these "
+        "joints move no inertia, so it cannot be generated (the runtime's float ABA divides by "
+        "zero there): {}.",
+        joint_list(robot.model, blocking_in_float));
   const std::string markdown = fill(
       "report.md.in",
       {{"robot", robot.name},

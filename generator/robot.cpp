@@ -144,6 +144,10 @@ std::vector<int> joints_blocking_aba(const Model<double>& model) {
   return joints;
 }
 
+std::vector<int> joints_blocking_aba_in_float(const Model<double>& model) {
+  return joints_blocking_aba(model.cast<float>().cast<double>());
+}
+
 Robot load_robot(const std::string& path, const LoadOptions& options) {
   if (!std::filesystem::is_regular_file(path))
     throw InputError(fmt::format(

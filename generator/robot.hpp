@@ -62,4 +62,8 @@ std::vector<int> joints_with_massless_subtree(const Model<double>& model);
 /// The joints that make ABA undefined, both kinds above, in body order (empty: ABA is defined).
 std::vector<int> joints_blocking_aba(const Model<double>& model);
 
+/// The same for the model with its constants rounded to float, where inertias below float's
+/// range become zero.
+std::vector<int> joints_blocking_aba_in_float(const Model<double>& model);
+
 }  // namespace dyngen::gen

@@ -72,4 +72,21 @@ TEST_F(ConditioningCli, WarnsWhenFloatWouldKeepTooFewDigits) {
       << r.err;
 }
 
+TEST_F(ConditioningCli, RefusesFloatAbaWhereTheFloatModelMovesNoInertia) {
+  // the tip's inertia (1e-48 kg m^2) rounds to zero in float
+  const std::string spec = models + "/coverage/tiny_tip.yaml";
+  const CliResult refused =
+      run_dyngen({spec, "-o", (dir / "f").string(), "--scalar", "float"}, dir);
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.err.find("ABA is undefined for this robot in float"), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("'link2_joint'"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "f"));
+  const CliResult twice = run_dyngen({spec, "-o", (dir / "d").string()}, dir);
+  EXPECT_EQ(twice.status, 0) << twice.err;
+  const CliResult without_aba = run_dyngen(
+      {spec, "-o", (dir / "r").string(), "--scalar", "float", "--algorithms", "rnea,crba"}, dir);
+  EXPECT_EQ(without_aba.status, 0) << without_aba.err;
+}
+
 }  // namespace

@@ -74,17 +74,28 @@ TEST_F(Report, MeasuresEveryVariantOfEveryAlgorithm) {
   EXPECT_GT(report["conditioning"]["cond_M_max"].get<double>(), 1.0);
 }
 
-TEST_F(Report, OnlyTheRequestedAlgorithms) {
+TEST_F(Report, OnlyTheRequestedAlgorithmsAndNonFiniteOutputs) {
+  // the tip's inertia (1e-48 kg m^2) rounds to zero in float: the runtime's float ABA divides
+  // by zero, and no float ABA can be generated
   const std::filesystem::path out = dir / "report";
-  const CliResult r = run_dyngen({"report", models + "/planar5.yaml", "-o", out.string(),
-                                  "--algorithms", "rnea", "--states", "10", "--min-time", "0.01",
-                                  "--repetitions", "1", "--quiet"},
-                                 dir);
+  const CliResult r =
+      run_dyngen({"report", models + "/coverage/tiny_tip.yaml", "-o", out.string(), "--algorithms",
+                  "rnea,aba", "--states", "10", "--min-time", "0.01", "--repetitions", "1",
+                  "--quiet"},
+                 dir);
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_EQ(r.out, "") << "--quiet prints nothing";
   const nlohmann::json report = nlohmann::json::parse(read(out / "report.json"));
   ASSERT_FALSE(report["results"].empty());
-  for (const nlohmann::json& v : report["results"]) EXPECT_EQ(v["algorithm"], "rnea");
+  for (const nlohmann::json& v : report["results"]) EXPECT_NE(v["algorithm"], "crba");
+  EXPECT_GE(report["conditioning"]["float_unrepresentable"].get<int>(), 1);
+  EXPECT_EQ(result(report, "aba", "runtime float")["nonfinite"], 10);
+  EXPECT_LT(result(report, "aba", "generated double")["worst_error"].get<double>(), 1e-6);
+  const std::string markdown = read(out / "report.md");
+  EXPECT_NE(markdown.find("| runtime float | inf | 10 non-finite |"), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("No generated float ABA"), std::string::npos) << markdown;
+  for (const nlohmann::json& v : report["results"])
+    EXPECT_FALSE(v["algorithm"] == "aba" && v["variant"] == "generated float");
 }
 
 TEST_F(Report, RefusesAbaOnMasslessJointsAndWritesNothing) {

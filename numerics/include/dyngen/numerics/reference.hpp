@@ -1,5 +1,5 @@
 // The truth for every error figure: the runtime's own algorithms instantiated with MPFR
-// numbers (mpfr::mpreal, 256 bits by default), on the double model converted exactly.
+// numbers (mpfr::mpreal, 256 bits or more), on the double model converted exactly.
 //
 // Errors are norm-wise and relative: ||x - x_ref||_2 / max(||x_ref||_2, error_floor), with the
 // difference and the norms taken in the exact type, so that the error of a float or double
@@ -23,9 +23,15 @@ namespace dyngen::numerics {
 
 using Exact = mpfr::mpreal;
 
-/// Bits of the exact type's significand: far beyond double's 53, so that the reference's own
-/// rounding stays below 1e-60 relative even where double loses every digit.
+/// Bits of the exact type's significand at least: 77 decimal digits, far beyond double's 16.
 inline constexpr int exact_bits = 256;
+
+/// Bits for a robot whose forward dynamics may lose `digits_lost` decimal digits (the
+/// conditioning estimate's aba_digits_lost): the reference runs the same algorithm and loses
+/// them too, so it carries them on top of 40 digits to spare.
+inline int reference_bits(double digits_lost) {
+  return std::max(exact_bits, static_cast<int>(std::ceil((digits_lost + 40) * 3.33)));
+}
 
 /// The absolute floor of the relative error's denominator, in the output's units (N m, kg m^2,
 /// rad/s^2): it only keeps an exactly zero reference from dividing by zero.
@@ -39,17 +45,19 @@ std::vector<Exact> widen(std::span<const S> x) {
   return out;
 }
 
-/// The runtime on MPFR numbers, for one model. Setting up sets MPFR's default precision to
-/// `bits` (mpreal numbers take it when they are made).
+/// The runtime on MPFR numbers of `bits` bits, for one model. mpreal numbers take MPFR's
+/// default precision when they are made, so every call sets it to `bits` first.
 class ExactDynamics {
  public:
   explicit ExactDynamics(const Model<double>& model, int bits = exact_bits)
-      : model_(cast_with_precision(model, bits)), ws_(model_) {}
+      : bits_(bits), model_(cast_with_precision(model, bits)), ws_(model_) {}
 
   const Model<Exact>& model() const { return model_; }
+  int bits() const { return bits_; }
 
   std::vector<Exact> rnea(std::span<const double> q, std::span<const double> qd,
                           std::span<const double> qdd) {
+    mpfr::mpreal::set_default_prec(bits_);
     std::vector<Exact> tau(model_.nv);
     const std::vector<Exact> eq = widen(q), eqd = widen(qd), eqdd = widen(qdd);
     dyngen::rnea<Exact>(model_, ws_, eq, eqd, eqdd, tau);
@@ -57,6 +65,7 @@ class ExactDynamics {
   }
 
   std::vector<Exact> crba(std::span<const double> q) {
+    mpfr::mpreal::set_default_prec(bits_);
     std::vector<Exact> M(static_cast<std::size_t>(model_.nv) * model_.nv);
     const std::vector<Exact> eq = widen(q);
     dyngen::crba<Exact>(model_, ws_, eq, M);
@@ -65,6 +74,7 @@ class ExactDynamics {
 
   std::vector<Exact> aba(std::span<const double> q, std::span<const double> qd,
                          std::span<const double> tau) {
+    mpfr::mpreal::set_default_prec(bits_);
     std::vector<Exact> qdd(model_.nv);
     const std::vector<Exact> eq = widen(q), eqd = widen(qd), etau = widen(tau);
     dyngen::aba<Exact>(model_, ws_, eq, eqd, etau, qdd);
@@ -77,6 +87,7 @@ class ExactDynamics {
     return model.cast<Exact>();
   }
 
+  int bits_;
   Model<Exact> model_;
   Workspace<Exact> ws_;
 };
