@@ -113,6 +113,22 @@ struct ModelFlags {
   }
 };
 
+/// Runs a command's work: bad input (InputError) exits with 1, any other failure with 2, each
+/// with its message on stderr after `command: error:`.
+template <class Work>
+int run_reporting_errors(const char* command, Work work) {
+  try {
+    work();
+  } catch (const InputError& e) {
+    fmt::print(stderr, "{}: error: {}\n", command, e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "{}: error: {}\n", command, e.what());
+    return 2;
+  }
+  return 0;
+}
+
 /// dyngen eval ROBOT --states FILE: the runtime's results as JSON on stdout.
 int eval_main(int argc, char** argv) {
   CLI::App app{"dyngen eval: computes RNEA, CRBA and ABA with the runtime at the states in a JSON "
@@ -127,18 +143,11 @@ int eval_main(int argc, char** argv) {
       ->required();
   flags.add_to(app);
   CLI11_PARSE(app, argc, argv);
-  try {
+  return run_reporting_errors("dyngen eval", [&] {
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
     fmt::print("{}\n", evaluate(robot.model, read_states(states)).dump(2));
-  } catch (const InputError& e) {
-    fmt::print(stderr, "dyngen eval: error: {}\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "dyngen eval: error: {}\n", e.what());
-    return 2;
-  }
-  return 0;
+  });
 }
 
 /// dyngen report ROBOT -o DIR: error against run time of every variant, as Markdown, JSON and a
@@ -171,7 +180,7 @@ int report_main(int argc, char** argv) {
   flags.add_to(app);
   app.add_flag("-q,--quiet", options.quiet, "print errors and warnings only");
   CLI11_PARSE(app, argc, argv);
-  try {
+  return run_reporting_errors("dyngen report", [&] {
     options.algorithms = parse_algorithms(algorithms);
     options.model_flags = flags.text();
     options.package_dir = package_dir();
@@ -181,14 +190,7 @@ int report_main(int argc, char** argv) {
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
     make_report(robot, options, output);
-  } catch (const InputError& e) {
-    fmt::print(stderr, "dyngen report: error: {}\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "dyngen report: error: {}\n", e.what());
-    return 2;
-  }
-  return 0;
+  });
 }
 
 }  // namespace
@@ -218,7 +220,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("dyngen ") + version);
   CLI11_PARSE(app, argc, argv);
 
-  try {
+  return run_reporting_errors("dyngen", [&] {
     const LoadOptions load = flags.load_options();
     GenerateOptions options;
     options.algorithms = parse_algorithms(algorithms);
@@ -263,12 +265,5 @@ int main(int argc, char** argv) {
                  "ctest --test-dir {0}/build\n",
                  output, package_dir());
     }
-  } catch (const InputError& e) {
-    fmt::print(stderr, "dyngen: error: {}\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "dyngen: error: {}\n", e.what());
-    return 2;
-  }
-  return 0;
+  });
 }
