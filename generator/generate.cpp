@@ -80,6 +80,7 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
   for (const FunctionCounts& c : counts)
     text += fmt::format("\n  {:<4}  generated: {}\n        runtime:   {}", algorithm_name(c.algorithm),
                         to_string(c.generated), to_string(c.runtime));
+  if (robot.snapped) text += "\n" + snap_text(*robot.snapped);
   return text + "\n" + conditioning;
 }
 
@@ -199,6 +200,13 @@ std::string joint_list(const Model<double>& model, const std::vector<int>& joint
   std::string names;
   for (const int i : joints) names += (names.empty() ? "'" : ", '") + model.joint_name[i] + "'";
   return names;
+}
+
+std::string snap_text(const SnapReport& s) {
+  return fmt::format(
+      "Model snapped (--snap): {} of {} constants were within the tolerance of 0 or +-1 and are "
+      "now exact ({} were already);\n  the largest change was {:.2g} relative.",
+      s.snapped, s.entries, s.exact, s.largest_change);
 }
 
 std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {

@@ -47,6 +47,9 @@ inline constexpr double min_float_digits = 3, min_double_digits = 6;
 /// A valid C++ identifier from a robot name ("my-robot" -> "my_robot").
 std::string identifier(const std::string& name);
 
+/// What --snap changed, in words, as the banner and the console say it.
+std::string snap_text(const SnapReport& s);
+
 /// The conditioning estimate in words (the ABA lines only if with_aba), as the banner and
 /// dyngen report record it.
 std::string conditioning_text(const numerics::Conditioning& c, bool with_aba);

@@ -2,6 +2,7 @@
 // specialised code, the model tables, the bit-for-bit check and a CMakeLists.txt.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -75,6 +76,7 @@ struct ModelFlags {
   std::string gravity;
   std::vector<std::string> locks;
   bool no_gravity = false, lock_massless = false, floating_base = false, mimic_independent = false;
+  std::optional<double> snap;
 
   void add_to(CLI::App& app) {
     auto* gravity_opt = app.add_option("--gravity", gravity,
@@ -89,6 +91,12 @@ struct ModelFlags {
     app.add_flag("--lock-massless", lock_massless, "lock every joint whose subtree has no mass");
     app.add_flag("--mimic-independent", mimic_independent,
                  "accept URDF mimic joints as independent joints (by default they are refused)");
+    app.add_option("--snap", snap,
+                   "make rotation and axis entries within TOL of 0 or +-1, and inertia products "
+                   "and offset components within TOL (relative) of 0, exact; changes the model "
+                   "by at most TOL relative, and says so in the banner")
+        ->type_name("TOL")
+        ->check(CLI::Range(0.0, 1e-3));
   }
 
   LoadOptions load_options() const {
@@ -97,6 +105,7 @@ struct ModelFlags {
     load.lock_massless = lock_massless;
     load.floating_base = floating_base;
     load.mimic_independent = mimic_independent;
+    load.snap = snap;
     if (no_gravity) load.gravity = Vec3<double>{0, 0, 0};
     if (!gravity.empty()) load.gravity = parse_gravity(gravity);
     return load;
@@ -109,6 +118,7 @@ struct ModelFlags {
     for (const std::string& j : locks) out += " --lock " + j;
     if (lock_massless) out += " --lock-massless";
     if (mimic_independent) out += " --mimic-independent";
+    if (snap) out += fmt::format(" --snap {}", *snap);
     return out;
   }
 };
@@ -257,6 +267,7 @@ int main(int argc, char** argv) {
                    algorithm_name(c.algorithm), c.generated.total(), c.runtime.total(),
                    100.0 * (1.0 - double(c.generated.total()) / double(c.runtime.total())),
                    to_string(c.generated));
+      if (robot.snapped) fmt::print("{}\n", snap_text(*robot.snapped));
       fmt::print("{}\n", generated.conditioning_text);
       fmt::print("wrote {} files to {}:", generated.files.size(), output);
       for (const GeneratedFile& f : generated.files) fmt::print(" {}", f.name);

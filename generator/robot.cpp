@@ -198,6 +198,7 @@ Robot load_robot(const std::string& path, const LoadOptions& options) {
   if (robot.model.nbodies == 0)
     throw InputError(fmt::format("{}: the robot has no moving joint", path));
   check_mimics(robot, description.mimics, options.mimic_independent);
+  if (options.snap) robot.snapped = snap(robot.model, *options.snap);
   return robot;
 }
 

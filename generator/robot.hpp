@@ -35,6 +35,7 @@ struct LoadOptions {
   std::optional<Vec3<double>> gravity;  // overrides the file's and the default
   bool floating_base = false;           // the root link on a free joint
   bool mimic_independent = false;       // accept URDF mimic joints as independent joints
+  std::optional<double> snap;           // snap constants within this tolerance (snap())
 };
 
 struct Robot {
@@ -44,6 +45,7 @@ struct Robot {
   Model<double> model;
   std::vector<std::string> locked;  // joints locked, in the order given
   std::vector<std::string> warnings;
+  std::optional<SnapReport> snapped;  // with LoadOptions::snap
 };
 
 inline constexpr Vec3<double> default_gravity{0, 0, -9.81};

@@ -268,4 +268,19 @@ TEST(JointDescription, NamesAxisAlignedAndGeneralJoints) {
   EXPECT_EQ(joint_description(m, 3), "prismatic axis (0, 0, 1)");
 }
 
+TEST(Banner, RecordsWhatSnapChanged) {
+  LoadOptions load;
+  load.snap = 1e-9;
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/iiwa14.urdf", load);
+  ASSERT_TRUE(robot.snapped);
+  EXPECT_GT(robot.snapped->snapped, 0);
+  GenerateOptions options;
+  options.name = "iiwa14";
+  const std::string header = generate(robot, options).files.front().text;
+  EXPECT_NE(header.find("// Model snapped (--snap): " + std::to_string(robot.snapped->snapped) +
+                        " of "),
+            std::string::npos)
+      << header.substr(0, 2000);
+}
+
 }  // namespace

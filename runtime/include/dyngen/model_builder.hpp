@@ -4,6 +4,7 @@
 // so both paths see the same numbers. Knows nothing of file formats.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -73,6 +74,68 @@ inline RigidInertia<double> link_inertia(const LinkSpec& link) {
           {Ic.xx + m * (c.y * c.y + c.z * c.z), Ic.yy + m * (c.x * c.x + c.z * c.z),
            Ic.zz + m * (c.x * c.x + c.y * c.y), Ic.xy - m * c.x * c.y, Ic.xz - m * c.x * c.z,
            Ic.yz - m * c.y * c.z}};
+}
+
+/// What snap() found and changed.
+struct SnapReport {
+  int entries = 0;  // constants examined
+  int exact = 0;    // already exactly 0 or +-1
+  int snapped = 0;  // within the tolerance, now exact
+  double largest_change = 0;  // relative to the entry's scale (1 for rotations and axes)
+};
+
+/// Snaps model constants that are within `tol` of exact values, so that the generated code
+/// can drop the multiplications by 0 and 1 they stand for (URDF rotations come through
+/// quaternions and rounded decimals, so an exact right angle arrives as 1e-17 and 0.99999...):
+/// rotation and joint-axis entries within tol of 0 or +-1 (a free joint has no axis); products of inertia within tol times
+/// the body's largest moment of 0; components of joint offsets and first moments within tol
+/// times their vector's length of 0. A revolute joint whose axis becomes a coordinate axis gets
+/// that axis's kind. This changes the model, by at most `tol` relative per constant.
+inline SnapReport snap(Model<double>& model, double tol) {
+  SnapReport report;
+  // x to target when within tol * scale; true if x is (now) exactly the target
+  const auto to = [&](double& x, double target, double scale) {
+    if (x == target) {
+      ++report.exact;
+      return true;
+    }
+    if (!(std::abs(x - target) <= tol * scale)) return false;
+    report.largest_change = std::max(report.largest_change, std::abs(x - target) / scale);
+    ++report.snapped;
+    x = target;
+    return true;
+  };
+  const auto unit_entry = [&](double& x) {
+    ++report.entries;
+    to(x, 0, 1) || to(x, 1, 1) || to(x, -1, 1);
+  };
+  const auto small_entry = [&](double& x, double scale) {
+    ++report.entries;
+    to(x, 0, scale);
+  };
+  const auto vector = [&](Vec3<double>& v) {
+    const double length = std::sqrt(dot(v, v));
+    for (double* x : {&v.x, &v.y, &v.z}) small_entry(*x, length);
+  };
+  for (int i = 0; i < model.nbodies; ++i) {
+    Mat3<double>& E = model.X_tree[i].E;
+    for (double* x : {&E.xx, &E.xy, &E.xz, &E.yx, &E.yy, &E.yz, &E.zx, &E.zy, &E.zz})
+      unit_entry(*x);
+    vector(model.X_tree[i].r);
+    vector(model.I[i].h);
+    Sym3<double>& J = model.I[i].I;
+    const double moment = std::max({J.xx, J.yy, J.zz});
+    for (double* x : {&J.xy, &J.xz, &J.yz}) small_entry(*x, moment);
+    if (model.joint_type[i] == JointType::Free) continue;
+    Vec3<double>& k = model.joint_axis[i];
+    for (double* x : {&k.x, &k.y, &k.z}) unit_entry(*x);
+    if (!is_revolute(model.joint_type[i])) continue;
+    model.joint_type[i] = k.y == 0 && k.z == 0   ? JointType::RevoluteX
+                          : k.x == 0 && k.z == 0 ? JointType::RevoluteY
+                          : k.x == 0 && k.y == 0 ? JointType::RevoluteZ
+                                                 : JointType::Revolute;
+  }
+  return report;
 }
 
 class ModelBuilder {
