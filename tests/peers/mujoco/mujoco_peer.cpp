@@ -288,20 +288,32 @@ Eigen::Matrix<double, 6, 6> MujocoRobot::inertia(int i) const {
   return total;
 }
 
-Eigen::MatrixXd MujocoRobot::set_state(std::span<const double> q, std::span<const double> v) {
+std::vector<double> MujocoRobot::qpos(std::span<const double> q) const {
+  std::vector<double> qpos(m_->nq);
+  for (int i = 0; i < model_.nbodies; ++i)
+    std::copy_n(q.begin() + model_.q_index[i], joint_nq(model_.joint_type[i]),
+                qpos.begin() + m_->jnt_qposadr[joint_[i]]);
+  return qpos;
+}
+
+Eigen::MatrixXd MujocoRobot::velocity_map(std::span<const double> q) const {
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(model_.nv, model_.nv);
   for (int i = 0; i < model_.nbodies; ++i) {
-    const JointType type = model_.joint_type[i];
-    const int j = joint_[i], iq = model_.q_index[i], iv = model_.v_index[i];
-    std::copy_n(q.begin() + iq, joint_nq(type), d_->qpos + m_->jnt_qposadr[j]);
-    const int dof = m_->jnt_dofadr[j];
-    if (type == JointType::Free) {
-      A.block<3, 3>(dof, iv) = rotation(q.subspan(iq + 3, 4));
+    const int dof = m_->jnt_dofadr[joint_[i]], iv = model_.v_index[i];
+    if (model_.joint_type[i] == JointType::Free) {
+      A.block<3, 3>(dof, iv) = rotation(q.subspan(model_.q_index[i] + 3, 4));
       A.block<3, 3>(dof + 3, iv + 3).setIdentity();
     } else {
       A(dof, iv) = 1;
     }
   }
+  return A;
+}
+
+Eigen::MatrixXd MujocoRobot::set_state(std::span<const double> q, std::span<const double> v) {
+  const std::vector<double> pos = qpos(q);
+  std::copy(pos.begin(), pos.end(), d_->qpos);
+  const Eigen::MatrixXd A = velocity_map(q);
   Eigen::Map<Eigen::VectorXd>(d_->qvel, m_->nv) =
       A * Eigen::Map<const Eigen::VectorXd>(v.data(), model_.nv);
   return A;

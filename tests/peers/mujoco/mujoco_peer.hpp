@@ -88,6 +88,16 @@ class MujocoRobot {
   std::vector<double> aba(std::span<const double> q, std::span<const double> v,
                           std::span<const double> tau);
 
+  /// dyngen's q as MuJoCo's qpos.
+  std::vector<double> qpos(std::span<const double> q) const;
+
+  /// The orthogonal A with v_mujoco = A v at q (joint order and T); forces map the same way.
+  Eigen::MatrixXd velocity_map(std::span<const double> q) const;
+
+  /// The acceleration of each free joint's world-coordinate linear velocity when dyngen's
+  /// acceleration is zero, in MuJoCo's dof order: a_mujoco = A a + free_joint_bias(q, v).
+  Eigen::VectorXd free_joint_bias(std::span<const double> q, std::span<const double> v) const;
+
  private:
   struct ModelDeleter {
     void operator()(mjModel* m) const { mj_deleteModel(m); }
@@ -96,12 +106,8 @@ class MujocoRobot {
     void operator()(mjData* d) const { mj_deleteData(d); }
   };
 
-  /// Sets qpos and qvel; returns the orthogonal A with v_mujoco = A v (permutation and T).
+  /// Sets qpos and qvel; returns velocity_map(q).
   Eigen::MatrixXd set_state(std::span<const double> q, std::span<const double> v);
-
-  /// The acceleration of each free joint's world-coordinate linear velocity when dyngen's
-  /// acceleration is zero, in MuJoCo's dof order.
-  Eigen::VectorXd free_joint_bias(std::span<const double> q, std::span<const double> v) const;
 
   Model<double> model_;
   std::unique_ptr<mjModel, ModelDeleter> m_;

@@ -1,0 +1,564 @@
+// dyngen_bench (README.md): RNEA, CRBA and ABA of the generated code, the runtime, MuJoCo and
+// orocos-KDL for every package of packages.cpp, in ns per call on seeded random states that
+// change every iteration. Each timed call is first checked against the runtime, so that all
+// four compute the same quantity of the same model. With an output directory it then writes
+// benchmarks.md (the table, with ratios to the generated code) and benchmarks.gp (a gnuplot
+// script with its data: time and operation count against links for the chains).
+//
+// usage: dyngen_bench [Google Benchmark flags] [OUTPUT_DIR]
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <kdl/chaindynparam.hpp>
+#include <kdl/chainfdsolver_recursive_newton_euler.hpp>
+#include <kdl/chainidsolver_recursive_newton_euler.hpp>
+#include <kdl/treeidsolver_recursive_newton_euler.hpp>
+#include <map>
+#include <memory>
+#include <optional>
+#include <regex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dyngen/dyngen.hpp"
+#include "kdl_peer.hpp"
+#include "mujoco_peer.hpp"
+#include "package.hpp"
+#include "robot.hpp"
+
+namespace dyngen::bench {
+namespace {
+
+using numerics::Random;
+using numerics::State;
+
+constexpr int state_count = 256;  // cycled through, so the inputs change every call
+constexpr std::uint64_t seed = 20261121;
+constexpr double tolerance = 1e-8;  // of the check against the runtime (the peers pass 1e-9)
+
+enum Algorithm { Rnea, Crba, Aba };
+constexpr Algorithm algorithms[] = {Rnea, Crba, Aba};
+constexpr const char* algorithm_names[] = {"rnea", "crba", "aba"};
+enum Implementation { Generated, Runtime, Mujoco, Kdl };
+constexpr const char* implementation_names[] = {"generated", "runtime", "mujoco", "kdl"};
+
+int output_size(Algorithm a, int nv) { return a == Crba ? nv * nv : nv; }
+
+Eigen::Map<const Eigen::VectorXd> vec(const std::vector<double>& x) {
+  return {x.data(), static_cast<Eigen::Index>(x.size())};
+}
+
+double relative_error(const Eigen::VectorXd& x, const Eigen::VectorXd& reference) {
+  return (x - reference).norm() / reference.norm();
+}
+
+/// The runtime's result at s (M row-major): what every timed call is checked against.
+std::vector<double> reference(const Model<double>& model, Algorithm a, const State& s) {
+  Workspace<double> ws(model);
+  std::vector<double> out(output_size(a, model.nv));
+  switch (a) {
+    case Rnea: rnea<double>(model, ws, s.q, s.qd, s.qdd, out); break;
+    case Crba: crba<double>(model, ws, s.q, out); break;
+    case Aba: aba<double>(model, ws, s.q, s.qd, s.tau, out); break;
+  }
+  return out;
+}
+
+// Each implementation below has run(a, k), the timed call on state k, and error(a, k): run(a, k)
+// and its relative difference from the runtime.
+
+class GeneratedCode {
+ public:
+  GeneratedCode(const Package& p, const Model<double>& model, const std::vector<State>& states)
+      : p_(p), model_(model), states_(states), out_(model.nv * model.nv) {}
+
+  bool has(Algorithm) const { return true; }
+
+  void run(Algorithm a, int k) {
+    const State& s = states_[k];
+    switch (a) {
+      case Rnea: p_.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out_.data()); break;
+      case Crba: p_.crba(s.q.data(), out_.data()); break;
+      case Aba: p_.aba(s.q.data(), s.qd.data(), s.tau.data(), out_.data()); break;
+    }
+  }
+
+  double error(Algorithm a, int k) {
+    run(a, k);
+    const std::vector<double> expected = reference(model_, a, states_[k]);
+    return relative_error(vec(out_).head(expected.size()), vec(expected));
+  }
+
+ private:
+  const Package& p_;
+  const Model<double>& model_;
+  const std::vector<State>& states_;
+  std::vector<double> out_;
+};
+
+class RuntimeCode {
+ public:
+  RuntimeCode(const Model<double>& model, const std::vector<State>& states)
+      : model_(model), ws_(model), states_(states), out_(model.nv * model.nv) {}
+
+  bool has(Algorithm) const { return true; }
+
+  void run(Algorithm a, int k) {
+    const State& s = states_[k];
+    const std::span<double> out(out_.data(), output_size(a, model_.nv));
+    switch (a) {
+      case Rnea: rnea<double>(model_, ws_, s.q, s.qd, s.qdd, out); break;
+      case Crba: crba<double>(model_, ws_, s.q, out); break;
+      case Aba: aba<double>(model_, ws_, s.q, s.qd, s.tau, out); break;
+    }
+  }
+
+  double error(Algorithm a, int k) {
+    run(a, k);
+    const std::vector<double> expected = reference(model_, a, states_[k]);
+    return relative_error(vec(out_).head(expected.size()), vec(expected));
+  }
+
+ private:
+  const Model<double>& model_;
+  Workspace<double> ws_;
+  const std::vector<State>& states_;
+  std::vector<double> out_;
+};
+
+/// MuJoCo's functions that compute what dyngen's do, on its own copy of the peer's model (with
+/// the model's gravity, which a chain spec may set and URDF cannot) and its own mjData. Each
+/// call copies the state into mjData, as a caller would.
+///   RNEA: mj_kinematics, mj_comPos, mj_comVel, mj_rne with accelerations.
+///   CRBA: mj_kinematics, mj_comPos, mj_crb, mj_fullM (qM to a dense matrix, as dyngen's).
+///   ABA:  mj_forward's smooth path: mj_kinematics, mj_comPos, mj_crb, mj_factorM, mj_comVel,
+///         mj_rne without accelerations (the bias force), mj_solveM of qfrc_applied - bias.
+class MujocoCode {
+ public:
+  MujocoCode(const gen::Robot& robot, const char* urdf, bool floating_base,
+             const std::vector<State>& states)
+      : model_(robot.model),
+        peer_(urdf, robot.model, robot.locked, floating_base),
+        m_(mj_copyModel(nullptr, peer_.mj()), mj_deleteModel),
+        d_(nullptr, mj_deleteData),
+        states_(states) {
+    m_->opt.gravity[0] = model_.gravity.x;
+    m_->opt.gravity[1] = model_.gravity.y;
+    m_->opt.gravity[2] = model_.gravity.z;
+    d_.reset(mj_makeData(m_.get()));
+    const int nv = m_->nv;
+    for (const State& s : states) {
+      const Eigen::MatrixXd A = peer_.velocity_map(s.q);
+      const std::vector<double> qpos = peer_.qpos(s.q);
+      const Eigen::VectorXd qvel = A * vec(s.qd),
+                            qacc = A * vec(s.qdd) + peer_.free_joint_bias(s.q, s.qd),
+                            qfrc = A * vec(s.tau);
+      qpos_.insert(qpos_.end(), qpos.begin(), qpos.end());
+      qvel_.insert(qvel_.end(), qvel.begin(), qvel.end());
+      qacc_.insert(qacc_.end(), qacc.begin(), qacc.end());
+      qfrc_.insert(qfrc_.end(), qfrc.begin(), qfrc.end());
+    }
+    out_.resize(nv * nv);
+    force_.resize(nv);
+  }
+
+  bool has(Algorithm) const { return true; }
+
+  void run(Algorithm a, int k) {
+    const mjModel* m = m_.get();
+    mjData* d = d_.get();
+    const int nq = m->nq, nv = m->nv;
+    mju_copy(d->qpos, &qpos_[k * nq], nq);
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    switch (a) {
+      case Rnea:
+        mju_copy(d->qvel, &qvel_[k * nv], nv);
+        mju_copy(d->qacc, &qacc_[k * nv], nv);
+        mj_comVel(m, d);
+        mj_rne(m, d, 1, out_.data());
+        break;
+      case Crba:
+        mj_crb(m, d);
+        mj_fullM(m, out_.data(), d->qM);
+        break;
+      case Aba:
+        mju_copy(d->qvel, &qvel_[k * nv], nv);
+        mju_copy(d->qfrc_applied, &qfrc_[k * nv], nv);
+        mj_crb(m, d);
+        mj_factorM(m, d);
+        mj_comVel(m, d);
+        mj_rne(m, d, 0, d->qfrc_bias);
+        mju_sub(force_.data(), d->qfrc_applied, d->qfrc_bias, nv);
+        mj_solveM(m, d, out_.data(), force_.data(), 1);
+        break;
+    }
+  }
+
+  /// In dyngen's coordinates (mujoco_peer.hpp): tau = A^T tau_mujoco, M = A^T M_mujoco A,
+  /// a = A^T (qacc - bias).
+  double error(Algorithm a, int k) {
+    run(a, k);
+    const State& s = states_[k];
+    const Eigen::MatrixXd A = peer_.velocity_map(s.q);
+    const int nv = m_->nv;
+    const Eigen::Map<const Eigen::VectorXd> out(out_.data(), output_size(a, nv));
+    Eigen::VectorXd got;
+    switch (a) {
+      case Rnea: got = A.transpose() * out; break;
+      case Crba: {
+        const Eigen::MatrixXd M = out.reshaped<Eigen::RowMajor>(nv, nv);
+        got = (A.transpose() * M * A).reshaped<Eigen::RowMajor>();
+        break;
+      }
+      case Aba: got = A.transpose() * (out - peer_.free_joint_bias(s.q, s.qd)); break;
+    }
+    return relative_error(got, vec(reference(model_, a, s)));
+  }
+
+ private:
+  const Model<double>& model_;
+  test::mujoco_peer::MujocoRobot peer_;
+  std::unique_ptr<mjModel, decltype(&mj_deleteModel)> m_;
+  std::unique_ptr<mjData, decltype(&mj_deleteData)> d_;
+  const std::vector<State>& states_;
+  std::vector<double> qpos_, qvel_, qacc_, qfrc_;  // state k at k * nq or k * nv
+  std::vector<double> out_, force_;
+};
+
+/// orocos-KDL's solvers, on the peer's tree (kdl_peer.hpp: the locked joints fixed, a floating
+/// base as a virtual 6-DoF chain) and on its own random states, drawn in KDL's coordinates.
+/// Where the tree is a serial chain (equivalent_chain): ChainIdSolver_RNE,
+/// ChainDynParam::JntToMass and ChainFdSolver_RNE; otherwise TreeIdSolver_RNE, and KDL has no
+/// mass matrix or forward dynamics of a tree.
+class KdlCode {
+ public:
+  KdlCode(const gen::Robot& robot, const char* urdf, bool floating_base)
+      : model_(robot.model), tree_(test::kdl::load_tree(urdf, robot.locked, floating_base)) {
+    const Vec3<double>& g = model_.gravity;
+    const KDL::Vector gravity(g.x, g.y, g.z);
+    chain_ = test::kdl::equivalent_chain(tree_, model_.body_name.back());
+    const auto names =
+        (chain_ ? test::kdl::chain_dynamics(*chain_, g) : test::kdl::tree_dynamics(tree_, g))
+            ->joint_names();
+    const unsigned n = static_cast<unsigned>(names.size());
+    if (chain_) {
+      chain_id_ = std::make_unique<KDL::ChainIdSolver_RNE>(*chain_, gravity);
+      chain_param_ = std::make_unique<KDL::ChainDynParam>(*chain_, gravity);
+      chain_fd_ = std::make_unique<KDL::ChainFdSolver_RNE>(*chain_, gravity);
+      no_wrenches_.assign(chain_->getNrOfSegments(), KDL::Wrench::Zero());
+    } else {
+      tree_id_ = std::make_unique<KDL::TreeIdSolver_RNE>(tree_, gravity);
+    }
+    Random rng(seed);
+    for (int k = 0; k < state_count; ++k) {
+      pairs_.push_back(test::kdl::random_state_pair(model_, names, rng));
+      const test::kdl::StatePair& s = pairs_.back();
+      q_.emplace_back(n), qd_.emplace_back(n), qdd_.emplace_back(n), tau_.emplace_back(n);
+      q_.back().data = s.q_kdl, qd_.back().data = s.qd_kdl, qdd_.back().data = s.qdd_kdl;
+      tau_.back().data = s.G.transpose() * s.tau;
+    }
+    out_ = KDL::JntArray(n);
+    M_ = KDL::JntSpaceInertiaMatrix(static_cast<int>(n));
+  }
+
+  bool is_chain() const { return chain_.has_value(); }
+
+  bool has(Algorithm a) const { return a == Rnea || chain_; }
+
+  void run(Algorithm a, int k) {
+    switch (a) {
+      case Rnea:
+        if (chain_)
+          chain_id_->CartToJnt(q_[k], qd_[k], qdd_[k], no_wrenches_, out_);
+        else
+          tree_id_->CartToJnt(q_[k], qd_[k], qdd_[k], no_wrench_map_, out_);
+        break;
+      case Crba: chain_param_->JntToMass(q_[k], M_); break;
+      case Aba: chain_fd_->CartToJnt(q_[k], qd_[k], tau_[k], no_wrenches_, out_); break;
+    }
+  }
+
+  /// In KDL's coordinates for RNEA and CRBA, in dyngen's for ABA (kdl_peer.hpp).
+  double error(Algorithm a, int k) {
+    run(a, k);
+    const test::kdl::StatePair& s = pairs_[k];
+    const State state{{s.q.begin(), s.q.end()},
+                      {s.v.begin(), s.v.end()},
+                      {s.a.begin(), s.a.end()},
+                      {s.tau.begin(), s.tau.end()}};
+    const std::vector<double> expected = reference(model_, a, state);
+    const int nv = model_.nv;
+    switch (a) {
+      case Rnea: return relative_error(out_.data, s.G.transpose() * vec(expected));
+      case Crba: {
+        const Eigen::MatrixXd M = vec(expected).reshaped<Eigen::RowMajor>(nv, nv);
+        return relative_error(M_.data.reshaped(), (s.G.transpose() * M * s.G).reshaped());
+      }
+      case Aba: return relative_error(s.G * out_.data + s.Gdot_qd, vec(expected));
+    }
+    return NAN;
+  }
+
+ private:
+  const Model<double>& model_;
+  KDL::Tree tree_;  // the solvers keep references to it and to chain_
+  std::optional<KDL::Chain> chain_;
+  std::unique_ptr<KDL::ChainIdSolver_RNE> chain_id_;
+  std::unique_ptr<KDL::ChainDynParam> chain_param_;
+  std::unique_ptr<KDL::ChainFdSolver_RNE> chain_fd_;
+  std::unique_ptr<KDL::TreeIdSolver_RNE> tree_id_;
+  KDL::Wrenches no_wrenches_;
+  KDL::WrenchMap no_wrench_map_;
+  std::vector<test::kdl::StatePair> pairs_;
+  std::vector<KDL::JntArray> q_, qd_, qdd_, tau_;
+  KDL::JntArray out_;
+  KDL::JntSpaceInertiaMatrix M_;
+};
+
+/// Everything timed for one package; the implementations keep references into it.
+struct Subject {
+  const Package& package;
+  gen::Robot robot;
+  std::vector<State> states;
+  std::unique_ptr<GeneratedCode> generated;
+  std::unique_ptr<RuntimeCode> runtime;
+  std::unique_ptr<MujocoCode> mujoco;
+  std::unique_ptr<KdlCode> kdl;
+};
+
+std::string benchmark_name(const Package& p, Algorithm a, Implementation i) {
+  return std::string(p.name) + "/" + algorithm_names[a] + "/" + implementation_names[i];
+}
+
+/// Checks each algorithm of one implementation against the runtime on a few states, then
+/// registers its benchmark.
+template <class Code>
+void add(const Package& p, Implementation i, Code* code) {
+  for (const Algorithm a : algorithms) {
+    if (!code->has(a)) continue;
+    const std::string name = benchmark_name(p, a, i);
+    for (int k = 0; k < 4; ++k)
+      if (const double error = code->error(a, k); !(error <= tolerance))
+        throw std::runtime_error(name + ": relative difference " + std::to_string(error) +
+                                 " from the runtime at state " + std::to_string(k));
+    benchmark::RegisterBenchmark(name.c_str(), [code, a](benchmark::State& st) {
+      int k = 0;
+      for (auto _ : st) {
+        code->run(a, k);
+        benchmark::ClobberMemory();
+        k = (k + 1) % state_count;
+      }
+    })->Unit(benchmark::kNanosecond);
+  }
+}
+
+std::unique_ptr<Subject> make_subject(const Package& p) {
+  gen::LoadOptions options;
+  options.floating_base = p.floating_base;
+  options.mimic_independent = p.mimic_independent;
+  options.lock_massless = p.lock_massless;
+  auto s = std::unique_ptr<Subject>(
+      new Subject{p, gen::load_robot(p.input, options), {}, {}, {}, {}, {}});
+  Random rng(seed);
+  for (int k = 0; k < state_count; ++k)
+    s->states.push_back(numerics::random_state(s->robot.model, rng));
+  s->generated = std::make_unique<GeneratedCode>(p, s->robot.model, s->states);
+  s->runtime = std::make_unique<RuntimeCode>(s->robot.model, s->states);
+  s->mujoco = std::make_unique<MujocoCode>(s->robot, p.urdf, p.floating_base, s->states);
+  s->kdl = std::make_unique<KdlCode>(s->robot, p.urdf, p.floating_base);
+  add(p, Generated, s->generated.get());
+  add(p, Runtime, s->runtime.get());
+  add(p, Mujoco, s->mujoco.get());
+  add(p, Kdl, s->kdl.get());
+  return s;
+}
+
+/// Keeps the median of each benchmark's repetitions (the only run without repetitions) and
+/// prints it as progress.
+class MedianCollector : public benchmark::BenchmarkReporter {
+ public:
+  std::map<std::string, double> ns;
+
+  bool ReportContext(const Context&) override { return true; }
+
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const Run& r : runs) {
+      if (r.run_type == Run::RT_Aggregate && r.aggregate_name != "median") continue;
+      if (r.run_type == Run::RT_Iteration && r.repetitions > 1) continue;
+      ns[r.run_name.function_name] = r.GetAdjustedRealTime();
+      std::printf("  %-40s %12.1f ns\n", r.run_name.function_name.c_str(), r.GetAdjustedRealTime());
+      std::fflush(stdout);
+    }
+  }
+};
+
+/// Operations per call (add, mul, div, neg, sin and cos together) of the generated code and of
+/// the runtime, from the banner of NAME_dynamics.hpp.
+struct OperationCounts {
+  long generated[3] = {}, runtime[3] = {};
+};
+
+OperationCounts operation_counts(const char* header) {
+  std::ifstream in(header);
+  const std::regex line(R"(^//\s+(rnea|crba|aba)?\s+(generated|runtime):\s+(.*)$)");
+  const std::regex count(R"([a-z]+ (\d+))");
+  OperationCounts counts;
+  int algorithm = -1;
+  for (std::string text; std::getline(in, text) && text.starts_with("//");) {
+    std::smatch m;
+    if (!std::regex_match(text, m, line)) continue;
+    if (m[1].matched) algorithm = m[1] == "rnea" ? Rnea : m[1] == "crba" ? Crba : Aba;
+    long total = 0;
+    const std::string list = m[3];
+    for (std::sregex_iterator it(list.begin(), list.end(), count), end; it != end; ++it)
+      total += std::stol((*it)[1]);
+    (m[2] == "generated" ? counts.generated : counts.runtime)[algorithm] = total;
+  }
+  return counts;
+}
+
+std::string format_ns(std::optional<double> ns) {
+  if (!ns) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, *ns < 100 ? "%.1f" : "%.0f", *ns);
+  return text;
+}
+
+std::string format_ratio(std::optional<double> x, std::optional<double> y) {
+  if (!x || !y) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", *x / *y);
+  return text;
+}
+
+void write_results(const std::string& dir, const std::vector<std::unique_ptr<Subject>>& subjects,
+                   const std::map<std::string, double>& ns) {
+  const auto time = [&](const Package& p, Algorithm a, Implementation i) -> std::optional<double> {
+    const auto it = ns.find(benchmark_name(p, a, i));
+    if (it == ns.end()) return std::nullopt;
+    return it->second;
+  };
+
+  std::ofstream md(dir + "/benchmarks.md");
+  const benchmark::CPUInfo& cpu = benchmark::CPUInfo::Get();
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+  md << "# dyngen benchmarks\n\n"
+     << "ns per call (median over repetitions), " << state_count
+     << " seeded random states cycled through; " << cpu.num_cpus << " CPUs at "
+     << cpu.cycles_per_second / 1e6 << " MHz; MuJoCo " << mj_versionString()
+     << ", orocos-KDL 1.5.1; " << date
+     << ". Ratios are times over the generated code's (KDL / runtime: KDL's time over the "
+        "runtime's). ops: operations per call of the generated code and of the runtime "
+        "(dyngen's count). KDL: `chain` solvers on serial robots, `tree` (RNEA only) otherwise. "
+        "bench/README.md says what each column calls.\n\n"
+     << "| robot | base | nv | algorithm | generated | runtime | MuJoCo | KDL | KDL solver "
+        "| runtime / generated | MuJoCo / generated | KDL / generated | KDL / runtime "
+        "| ops generated | ops runtime |\n"
+     << "|---|---|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|\n";
+  for (const auto& s : subjects) {
+    const Package& p = s->package;
+    const OperationCounts ops = operation_counts(p.header);
+    const std::string robot =
+        p.links ? std::string(p.robot) + " " + std::to_string(p.links) : std::string(p.robot);
+    for (const Algorithm a : algorithms) {
+      const auto g = time(p, a, Generated), r = time(p, a, Runtime), m = time(p, a, Mujoco),
+                 k = time(p, a, Kdl);
+      if (!g && !r && !m && !k) continue;  // filtered out
+      md << "| " << robot << " | " << p.base << " | " << s->robot.model.nv << " | "
+         << algorithm_names[a] << " | " << format_ns(g) << " | " << format_ns(r) << " | "
+         << format_ns(m) << " | " << format_ns(k) << " | "
+         << (s->kdl->is_chain() ? "chain" : "tree") << " | " << format_ratio(r, g) << " | "
+         << format_ratio(m, g) << " | " << format_ratio(k, g) << " | " << format_ratio(k, r)
+         << " | " << ops.generated[a] << " | " << ops.runtime[a] << " |\n";
+    }
+  }
+
+  // gnuplot: time (top row) and operation count (bottom row) against links, one panel per
+  // algorithm; solid lines the planar chains, dashed the spatial ones.
+  std::ofstream gp(dir + "/benchmarks.gp");
+  const char* kinds[] = {"planar_chain", "spatial_chain"};
+  for (const char* kind : kinds)
+    for (const Algorithm a : algorithms) {
+      gp << "$" << kind << "_" << algorithm_names[a]
+         << " << EOD\n# links generated runtime mujoco kdl ops_generated ops_runtime\n";
+      for (const auto& s : subjects) {
+        const Package& p = s->package;
+        if (!p.links || std::string(p.robot) != kind) continue;
+        const OperationCounts ops = operation_counts(p.header);
+        gp << p.links;
+        for (const Implementation i : {Generated, Runtime, Mujoco, Kdl}) {
+          const auto t = time(p, a, i);
+          gp << " " << (t ? std::to_string(*t) : "NaN");
+        }
+        gp << " " << ops.generated[a] << " " << ops.runtime[a] << "\n";
+      }
+      gp << "EOD\n";
+    }
+  gp << "set terminal svg size 1500,950 dynamic font 'sans,11'\n"
+        "set output 'benchmarks.svg'\n"
+        "set logscale xy\nset xtics (2, 4, 8, 16, 32, 64, 128)\nset autoscale xfix\n"
+        "set offsets graph 0.05, graph 0.05, 0, 0\nset grid\n"
+        "set key top left font ',9'\nset xlabel 'links'\n"
+        "set multiplot layout 2,3 title 'dyngen benchmarks: chains (solid: planar, dashed: "
+        "spatial)'\n";
+  const char* colors[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a"};
+  for (const Algorithm a : algorithms) {
+    gp << "set title '" << algorithm_names[a] << ": time per call'\nset ylabel 'ns'\nplot ";
+    for (int i = 0; i < 4; ++i)
+      for (int kind = 0; kind < 2; ++kind)
+        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << algorithm_names[a]
+           << " using 1:" << i + 2 << " with linespoints lc rgb '" << colors[i] << "' dt "
+           << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[i]
+           << (kind ? " spatial" : " planar") << "'";
+    gp << "\n";
+  }
+  for (const Algorithm a : algorithms) {
+    gp << "set title '" << algorithm_names[a]
+       << ": operations per call'\nset ylabel 'add, mul, div, neg, sin, cos'\nplot ";
+    for (int i = 0; i < 2; ++i)
+      for (int kind = 0; kind < 2; ++kind)
+        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << algorithm_names[a]
+           << " using 1:" << i + 6 << " with linespoints lc rgb '" << colors[i] << "' dt "
+           << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[i]
+           << (kind ? " spatial" : " planar") << "'";
+    gp << "\n";
+  }
+  gp << "unset multiplot\n";
+}
+
+}  // namespace
+}  // namespace dyngen::bench
+
+int main(int argc, char** argv) {
+  using namespace dyngen::bench;
+  benchmark::Initialize(&argc, argv);
+  if (argc > 2 || (argc == 2 && argv[1][0] == '-')) {
+    std::fprintf(stderr, "usage: %s [Google Benchmark flags] [OUTPUT_DIR]\n", argv[0]);
+    return 2;
+  }
+  std::vector<std::unique_ptr<Subject>> subjects;
+  try {
+    for (const Package& p : packages()) {
+      std::printf("loading and checking %s\n", p.name);
+      std::fflush(stdout);
+      subjects.push_back(make_subject(p));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dyngen_bench: %s\n", e.what());
+    return 1;
+  }
+  std::printf("all agree with the runtime to %.0e; timing\n", tolerance);
+  MedianCollector collector;
+  benchmark::RunSpecifiedBenchmarks(&collector);
+  if (argc == 2) write_results(argv[1], subjects, collector.ns);
+  return 0;
+}

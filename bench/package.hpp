@@ -1,0 +1,25 @@
+// One package of generated code that dyngen_bench times, and how its robot was loaded.
+#pragma once
+
+#include <vector>
+
+namespace dyngen::bench {
+
+struct Package {
+  const char* name;    // robot, robot_floating or KIND_chainN: the C++ namespace
+  const char* robot;   // the robot, or planar_chain / spatial_chain
+  const char* base;    // fixed or floating
+  int links;           // chains: number of links; robots: 0
+  const char* input;   // what dyngen read
+  const char* urdf;    // what MuJoCo and KDL read: input, or the chain's URDF twin
+  const char* header;  // NAME_dynamics.hpp, whose banner has the operation counts
+  bool floating_base, mimic_independent, lock_massless;  // dyngen's load options
+  void (*rnea)(const double* q, const double* v, const double* a, double* tau) noexcept;
+  void (*crba)(const double* q, double* M) noexcept;
+  void (*aba)(const double* q, const double* v, const double* tau, double* qdd) noexcept;
+};
+
+/// Every package, in the order of bench/CMakeLists.txt.
+const std::vector<Package>& packages();
+
+}  // namespace dyngen::bench
