@@ -54,10 +54,6 @@ Eigen::Map<const Eigen::VectorXd> vec(const std::vector<double>& x) {
   return {x.data(), static_cast<Eigen::Index>(x.size())};
 }
 
-double relative_error(const Eigen::VectorXd& x, const Eigen::VectorXd& reference) {
-  return (x - reference).norm() / reference.norm();
-}
-
 /// The runtime's result at s (M row-major): what every timed call is checked against.
 std::vector<double> reference(const Model<double>& model, Algorithm a, const State& s) {
   Workspace<double> ws(model);
@@ -92,7 +88,7 @@ class GeneratedCode {
   double error(Algorithm a, int k) {
     run(a, k);
     const std::vector<double> expected = reference(model_, a, states_[k]);
-    return relative_error(vec(out_).head(expected.size()), vec(expected));
+    return test::relative_error(vec(out_).head(expected.size()), vec(expected));
   }
 
  private:
@@ -122,7 +118,7 @@ class RuntimeCode {
   double error(Algorithm a, int k) {
     run(a, k);
     const std::vector<double> expected = reference(model_, a, states_[k]);
-    return relative_error(vec(out_).head(expected.size()), vec(expected));
+    return test::relative_error(vec(out_).head(expected.size()), vec(expected));
   }
 
  private:
@@ -219,7 +215,7 @@ class MujocoCode {
       }
       case Aba: got = A.transpose() * (out - peer_.free_joint_bias(s.q, s.qd)); break;
     }
-    return relative_error(got, vec(reference(model_, a, s)));
+    return test::relative_error(got, vec(reference(model_, a, s)));
   }
 
  private:
@@ -296,12 +292,12 @@ class KdlCode {
     const std::vector<double> expected = reference(model_, a, state);
     const int nv = model_.nv;
     switch (a) {
-      case Rnea: return relative_error(out_.data, s.G.transpose() * vec(expected));
+      case Rnea: return test::relative_error(out_.data, s.G.transpose() * vec(expected));
       case Crba: {
         const Eigen::MatrixXd M = vec(expected).reshaped<Eigen::RowMajor>(nv, nv);
-        return relative_error(M_.data.reshaped(), (s.G.transpose() * M * s.G).reshaped());
+        return test::relative_error(M_.data.reshaped(), (s.G.transpose() * M * s.G).reshaped());
       }
-      case Aba: return relative_error(s.G * out_.data + s.Gdot_qd, vec(expected));
+      case Aba: return test::relative_error(s.G * out_.data + s.Gdot_qd, vec(expected));
     }
     return NAN;
   }

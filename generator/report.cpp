@@ -64,9 +64,11 @@ bool has(const std::vector<Algorithm>& algorithms, Algorithm a) {
   return std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end();
 }
 
-/// The generated code of one variant into dir/harness/<variant>.
-void write_variant(const Robot& robot, const ReportOptions& options, const std::string& name,
-                   bool single, const fs::path& dir, bool with_model) {
+/// The generated code of one variant into dir/harness/<variant>; returns generation's
+/// conditioning estimate.
+numerics::Conditioning write_variant(const Robot& robot, const ReportOptions& options,
+                                     const std::string& name, bool single, const fs::path& dir,
+                                     bool with_model) {
   GenerateOptions g;
   g.name = name;
   g.algorithms = options.algorithms;
@@ -83,6 +85,7 @@ void write_variant(const Robot& robot, const ReportOptions& options, const std::
         (with_model && f.name == name + "_model.hpp"))
       files.push_back(f);
   write_files(dir.string(), files);
+  return generated.conditioning;
 }
 
 const char* algorithm_title(const std::string& a) {
@@ -187,7 +190,8 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   const std::vector<int> blocking_in_float = joints_blocking_aba_in_float(robot.model);
   const bool float_aba = has(options.algorithms, Algorithm::Aba) && blocking_in_float.empty();
   step(1, "generating the code: double, float, double for FMA, double for fast-math");
-  write_variant(robot, options, name, false, work / "double", true);
+  const numerics::Conditioning c =
+      write_variant(robot, options, name, false, work / "double", true);
   write_variant(robot, options, name + "_float", true, work / "float", false);
   write_variant(robot, options, name + "_fma", false, work / "fma", false);
   write_variant(robot, options, name + "_fastmath", false, work / "fastmath", false);
@@ -220,8 +224,6 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
       work / "build.log", false);
 
   step(4, fmt::format("measuring errors on {} states, then timing", options.states));
-  const numerics::Conditioning c = numerics::estimate_conditioning(
-      robot.model, 16, 1, has(options.algorithms, Algorithm::Aba));
   const fs::path results_path = work / "results.json";
   run("running the harness",
       fmt::format("{} {} {} {} {} {} {} {}", quoted((build / (name + "_report")).string()),

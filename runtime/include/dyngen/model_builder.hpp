@@ -76,6 +76,14 @@ inline RigidInertia<double> link_inertia(const LinkSpec& link) {
            Ic.yz - m * c.y * c.z}};
 }
 
+/// The kind of a revolute joint about unit axis k: its own kind only on an exact +-x, +-y, +-z.
+inline JointType revolute_type(const Vec3<double>& k) {
+  if (k.y == 0 && k.z == 0) return JointType::RevoluteX;
+  if (k.x == 0 && k.z == 0) return JointType::RevoluteY;
+  if (k.x == 0 && k.y == 0) return JointType::RevoluteZ;
+  return JointType::Revolute;
+}
+
 /// What snap() found and changed.
 struct SnapReport {
   int entries = 0;  // constants examined
@@ -130,10 +138,7 @@ inline SnapReport snap(Model<double>& model, double tol) {
     Vec3<double>& k = model.joint_axis[i];
     for (double* x : {&k.x, &k.y, &k.z}) unit_entry(*x);
     if (!is_revolute(model.joint_type[i])) continue;
-    model.joint_type[i] = k.y == 0 && k.z == 0   ? JointType::RevoluteX
-                          : k.x == 0 && k.z == 0 ? JointType::RevoluteY
-                          : k.x == 0 && k.y == 0 ? JointType::RevoluteZ
-                                                 : JointType::Revolute;
+    model.joint_type[i] = revolute_type(k);
   }
   return report;
 }
@@ -293,13 +298,6 @@ class ModelBuilder {
     if (!(norm > 0) || !std::isfinite(norm))
       throw ModelError("joint '" + joint.name + "' has a zero or non-finite axis");
     return norm == 1 ? a : Vec3<double>{a.x / norm, a.y / norm, a.z / norm};
-  }
-
-  static JointType revolute_type(const Vec3<double>& k) {
-    if (k.y == 0 && k.z == 0) return JointType::RevoluteX;
-    if (k.x == 0 && k.z == 0) return JointType::RevoluteY;
-    if (k.x == 0 && k.y == 0) return JointType::RevoluteZ;
-    return JointType::Revolute;
   }
 
   /// A unit vector normal to n: the coordinate axis least aligned with n, made orthogonal to

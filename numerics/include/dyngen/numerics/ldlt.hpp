@@ -13,30 +13,52 @@
 
 namespace dyngen::numerics {
 
+/// qdd = M^-1 (tau - h) for any CRBA and RNEA with the generated code's signatures,
+/// crba(q, M) and rnea(q, qd, qdd, tau) on raw arrays (M row-major); buffers allocated once.
+template <class S>
+class LdltForwardDynamics {
+ public:
+  explicit LdltForwardDynamics(int nv)
+      : M_(nv, nv), h_(nv), zero_(Vector::Zero(nv)), rhs_(nv), ldlt_(nv) {}
+
+  template <class Crba, class Rnea>
+  void operator()(Crba crba_fn, Rnea rnea_fn, const S* q, const S* qd, const S* tau, S* qdd) {
+    const Eigen::Index n = h_.size();
+    crba_fn(q, M_.data());
+    rnea_fn(q, qd, zero_.data(), h_.data());
+    ldlt_.compute(M_);
+    rhs_ = Eigen::Map<const Vector>(tau, n) - h_;
+    Eigen::Map<Vector>(qdd, n) = ldlt_.solve(rhs_);
+  }
+
+ private:
+  using Vector = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+  Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M_;
+  Vector h_, zero_, rhs_;
+  Eigen::LDLT<Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>> ldlt_;
+};
+
 /// Buffers for crba_ldlt_forward_dynamics, allocated once per model.
 template <class S>
 struct LdltWorkspace {
-  explicit LdltWorkspace(const Model<S>& model)
-      : ws(model), M(model.nv, model.nv), h(model.nv), zero(model.nv, S(0)), ldlt(model.nv) {}
+  explicit LdltWorkspace(const Model<S>& model) : ws(model), solve(model.nv) {}
 
   Workspace<S> ws;
-  Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M;
-  Eigen::Matrix<S, Eigen::Dynamic, 1> h;
-  std::vector<S> zero;
-  Eigen::LDLT<Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>> ldlt;
+  LdltForwardDynamics<S> solve;
 };
 
-/// qdd = M(q)^-1 (tau - h(q, qd)) with M from crba, h from rnea and an LDL^T solve.
+/// qdd = M(q)^-1 (tau - h(q, qd)) with the runtime's crba and rnea and an LDL^T solve.
 template <class S>
 void crba_ldlt_forward_dynamics(const Model<S>& model, LdltWorkspace<S>& w,
                                 std::span<const S> q, std::span<const S> qd,
                                 std::span<const S> tau, std::span<S> qdd) {
-  const int n = model.nv;
-  crba<S>(model, w.ws, q, std::span<S>(w.M.data(), static_cast<std::size_t>(n) * n));
-  rnea<S>(model, w.ws, q, qd, w.zero, std::span<S>(w.h.data(), n));
-  w.ldlt.compute(w.M);
-  Eigen::Map<Eigen::Matrix<S, Eigen::Dynamic, 1>> x(qdd.data(), n);
-  x = w.ldlt.solve(Eigen::Map<const Eigen::Matrix<S, Eigen::Dynamic, 1>>(tau.data(), n) - w.h);
+  const std::size_t nq = model.nq, nv = model.nv;
+  w.solve(
+      [&](const S* q_, S* M) { crba<S>(model, w.ws, {q_, nq}, {M, nv * nv}); },
+      [&](const S* q_, const S* qd_, const S* qdd_, S* tau_) {
+        rnea<S>(model, w.ws, {q_, nq}, {qd_, nv}, {qdd_, nv}, {tau_, nv});
+      },
+      q.data(), qd.data(), tau.data(), qdd.data());
 }
 
 }  // namespace dyngen::numerics
