@@ -45,8 +45,9 @@ constexpr double tolerance = 1e-8;  // of the check against the runtime (the pee
 enum Algorithm { Rnea, Crba, Aba };
 constexpr Algorithm algorithms[] = {Rnea, Crba, Aba};
 constexpr const char* algorithm_names[] = {"rnea", "crba", "aba"};
-enum Implementation { Generated, Runtime, Mujoco, Kdl };
-constexpr const char* implementation_names[] = {"generated", "runtime", "mujoco", "kdl"};
+enum Implementation { Generated, Snapped, Runtime, Mujoco, Kdl };
+constexpr const char* implementation_names[] = {"generated", "snapped", "runtime", "mujoco",
+                                                "kdl"};
 
 int output_size(Algorithm a, int nv) { return a == Crba ? nv * nv : nv; }
 
@@ -69,19 +70,21 @@ std::vector<double> reference(const Model<double>& model, Algorithm a, const Sta
 // Each implementation below has run(a, k), the timed call on state k, and error(a, k): run(a, k)
 // and its relative difference from the runtime.
 
+/// Generated code; the snapped code's model differs from the runtime's by less than 1e-10
+/// (bench/README.md), far inside the check's tolerance.
 class GeneratedCode {
  public:
-  GeneratedCode(const Package& p, const Model<double>& model, const std::vector<State>& states)
-      : p_(p), model_(model), states_(states), out_(model.nv * model.nv) {}
+  GeneratedCode(const Functions& f, const Model<double>& model, const std::vector<State>& states)
+      : f_(f), model_(model), states_(states), out_(model.nv * model.nv) {}
 
-  bool has(Algorithm) const { return true; }
+  bool has(Algorithm) const { return f_.rnea != nullptr; }
 
   void run(Algorithm a, int k) {
     const State& s = states_[k];
     switch (a) {
-      case Rnea: p_.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out_.data()); break;
-      case Crba: p_.crba(s.q.data(), out_.data()); break;
-      case Aba: p_.aba(s.q.data(), s.qd.data(), s.tau.data(), out_.data()); break;
+      case Rnea: f_.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out_.data()); break;
+      case Crba: f_.crba(s.q.data(), out_.data()); break;
+      case Aba: f_.aba(s.q.data(), s.qd.data(), s.tau.data(), out_.data()); break;
     }
   }
 
@@ -92,7 +95,7 @@ class GeneratedCode {
   }
 
  private:
-  const Package& p_;
+  const Functions& f_;
   const Model<double>& model_;
   const std::vector<State>& states_;
   std::vector<double> out_;
@@ -323,7 +326,7 @@ struct Subject {
   const Package& package;
   gen::Robot robot;
   std::vector<State> states;
-  std::unique_ptr<GeneratedCode> generated;
+  std::unique_ptr<GeneratedCode> generated, snapped;
   std::unique_ptr<RuntimeCode> runtime;
   std::unique_ptr<MujocoCode> mujoco;
   std::unique_ptr<KdlCode> kdl;
@@ -361,15 +364,17 @@ std::unique_ptr<Subject> make_subject(const Package& p) {
   options.mimic_independent = p.mimic_independent;
   options.lock_massless = p.lock_massless;
   auto s = std::unique_ptr<Subject>(
-      new Subject{p, gen::load_robot(p.input, options), {}, {}, {}, {}, {}});
+      new Subject{p, gen::load_robot(p.input, options), {}, {}, {}, {}, {}, {}});
   Random rng(seed);
   for (int k = 0; k < state_count; ++k)
     s->states.push_back(numerics::random_state(s->robot.model, rng));
-  s->generated = std::make_unique<GeneratedCode>(p, s->robot.model, s->states);
+  s->generated = std::make_unique<GeneratedCode>(p.generated, s->robot.model, s->states);
+  s->snapped = std::make_unique<GeneratedCode>(p.snapped, s->robot.model, s->states);
   s->runtime = std::make_unique<RuntimeCode>(s->robot.model, s->states);
   s->mujoco = std::make_unique<MujocoCode>(s->robot, p.urdf, p.floating_base, s->states);
   s->kdl = std::make_unique<KdlCode>(s->robot, p.urdf, p.floating_base);
   add(p, Generated, s->generated.get());
+  add(p, Snapped, s->snapped.get());
   add(p, Runtime, s->runtime.get());
   add(p, Mujoco, s->mujoco.get());
   add(p, Kdl, s->kdl.get());
@@ -402,10 +407,11 @@ struct OperationCounts {
 };
 
 OperationCounts operation_counts(const char* header) {
+  OperationCounts counts;
+  if (!header) return counts;
   std::ifstream in(header);
   const std::regex line(R"(^//\s+(rnea|crba|aba)?\s+(generated|runtime):\s+(.*)$)");
   const std::regex count(R"([a-z]+ (\d+))");
-  OperationCounts counts;
   int algorithm = -1;
   for (std::string text; std::getline(in, text) && text.starts_with("//");) {
     std::smatch m;
@@ -453,34 +459,42 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
      << cpu.cycles_per_second / 1e6 << " MHz; MuJoCo " << mj_versionString()
      << ", orocos-KDL 1.5.1; " << date
      << ". Ratios are times over the generated code's (KDL / runtime: KDL's time over the "
-        "runtime's). ops: operations per call of the generated code and of the runtime "
-        "(dyngen's count). KDL: `chain` solvers on serial robots, `tree` (RNEA only) otherwise. "
-        "bench/README.md says what each column calls.\n\n"
-     << "| robot | base | nv | algorithm | generated | runtime | MuJoCo | KDL | KDL solver "
-        "| runtime / generated | MuJoCo / generated | KDL / generated | KDL / runtime "
-        "| ops generated | ops runtime |\n"
-     << "|---|---|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|\n";
+        "runtime's). snapped: the code of `dyngen --snap 1e-9`, with its ratios over the same "
+        "others. ops: operations per call of the generated code, the snapped code and the "
+        "runtime (dyngen's count). KDL: `chain` solvers on serial robots, `tree` (RNEA only) "
+        "otherwise. bench/README.md says what each column calls.\n\n"
+     << "| robot | base | nv | algorithm | generated | snapped | runtime | MuJoCo | KDL "
+        "| KDL solver | runtime / generated | MuJoCo / generated | KDL / generated "
+        "| runtime / snapped | MuJoCo / snapped | KDL / snapped | KDL / runtime "
+        "| ops generated | ops snapped | ops runtime |\n"
+     << "|---|---|---:|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "---:|---:|\n";
   for (const auto& s : subjects) {
     const Package& p = s->package;
     const OperationCounts ops = operation_counts(p.header);
+    const OperationCounts snapped_ops = operation_counts(p.snapped_header);
     const std::string robot =
         p.links ? std::string(p.robot) + " " + std::to_string(p.links) : std::string(p.robot);
     for (const Algorithm a : algorithms) {
-      const auto g = time(p, a, Generated), r = time(p, a, Runtime), m = time(p, a, Mujoco),
-                 k = time(p, a, Kdl);
-      if (!g && !r && !m && !k) continue;  // filtered out
+      const auto g = time(p, a, Generated), sn = time(p, a, Snapped), r = time(p, a, Runtime),
+                 m = time(p, a, Mujoco), k = time(p, a, Kdl);
+      if (!g && !sn && !r && !m && !k) continue;  // filtered out
       md << "| " << robot << " | " << p.base << " | " << s->robot.model.nv << " | "
-         << algorithm_names[a] << " | " << format_ns(g) << " | " << format_ns(r) << " | "
-         << format_ns(m) << " | " << format_ns(k) << " | "
+         << algorithm_names[a] << " | " << format_ns(g) << " | " << format_ns(sn) << " | "
+         << format_ns(r) << " | " << format_ns(m) << " | " << format_ns(k) << " | "
          << (s->kdl->is_chain() ? "chain" : "tree") << " | " << format_ratio(r, g) << " | "
-         << format_ratio(m, g) << " | " << format_ratio(k, g) << " | " << format_ratio(k, r)
-         << " | " << ops.generated[a] << " | " << ops.runtime[a] << " |\n";
+         << format_ratio(m, g) << " | " << format_ratio(k, g) << " | " << format_ratio(r, sn)
+         << " | " << format_ratio(m, sn) << " | " << format_ratio(k, sn) << " | "
+         << format_ratio(k, r) << " | " << ops.generated[a] << " | "
+         << (p.snapped_header ? std::to_string(snapped_ops.generated[a]) : "-") << " | "
+         << ops.runtime[a] << " |\n";
     }
   }
 
   // gnuplot: time (top row) and operation count (bottom row) against links, one panel per
   // algorithm; solid lines the planar chains, dashed the spatial ones.
   std::ofstream gp(dir + "/benchmarks.gp");
+  const Implementation plotted[] = {Generated, Runtime, Mujoco, Kdl};  // the chains have no snap
   const char* kinds[] = {"planar_chain", "spatial_chain"};
   for (const char* kind : kinds)
     for (const Algorithm a : algorithms) {
@@ -491,7 +505,7 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
         if (!p.links || std::string(p.robot) != kind) continue;
         const OperationCounts ops = operation_counts(p.header);
         gp << p.links;
-        for (const Implementation i : {Generated, Runtime, Mujoco, Kdl}) {
+        for (const Implementation i : plotted) {
           const auto t = time(p, a, i);
           gp << " " << (t ? std::to_string(*t) : "NaN");
         }
@@ -513,7 +527,7 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
       for (int kind = 0; kind < 2; ++kind)
         gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << algorithm_names[a]
            << " using 1:" << i + 2 << " with linespoints lc rgb '" << colors[i] << "' dt "
-           << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[i]
+           << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[plotted[i]]
            << (kind ? " spatial" : " planar") << "'";
     gp << "\n";
   }
@@ -524,7 +538,7 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
       for (int kind = 0; kind < 2; ++kind)
         gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << algorithm_names[a]
            << " using 1:" << i + 6 << " with linespoints lc rgb '" << colors[i] << "' dt "
-           << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[i]
+           << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[plotted[i]]
            << (kind ? " spatial" : " planar") << "'";
     gp << "\n";
   }

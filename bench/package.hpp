@@ -5,6 +5,13 @@
 
 namespace dyngen::bench {
 
+/// The three functions of one generated package.
+struct Functions {
+  void (*rnea)(const double* q, const double* v, const double* a, double* tau) noexcept;
+  void (*crba)(const double* q, double* M) noexcept;
+  void (*aba)(const double* q, const double* v, const double* tau, double* qdd) noexcept;
+};
+
 struct Package {
   const char* name;    // robot, robot_floating or KIND_chainN: the C++ namespace
   const char* robot;   // the robot, or planar_chain / spatial_chain
@@ -13,10 +20,10 @@ struct Package {
   const char* input;   // what dyngen read
   const char* urdf;    // what MuJoCo and KDL read: input, or the chain's URDF twin
   const char* header;  // NAME_dynamics.hpp, whose banner has the operation counts
+  const char* snapped_header;  // the same for the snapped code (null for the chains)
   bool floating_base, mimic_independent, lock_massless;  // dyngen's load options
-  void (*rnea)(const double* q, const double* v, const double* a, double* tau) noexcept;
-  void (*crba)(const double* q, double* M) noexcept;
-  void (*aba)(const double* q, const double* v, const double* tau, double* qdd) noexcept;
+  Functions generated;
+  Functions snapped;  // the code dyngen --snap 1e-9 writes (null for the chains)
 };
 
 /// Every package, in the order of bench/CMakeLists.txt.

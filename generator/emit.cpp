@@ -1,6 +1,8 @@
 #include "emit.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -108,6 +110,15 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
   const std::vector<bool> live = live_nodes(program);
   const char* type = std::is_same_v<T, float> ? "float" : "double";
 
+  // sin and cos of joint angles come precomputed in trig (joint_trig), so that one call of
+  // dyngen::sincos serves every function that takes the same q
+  auto is_trig = [&](const Node<T>& n) {
+    if (n.op != Op::Sin && n.op != Op::Cos) return false;
+    const Node<T>& x = nodes[n.a];
+    if (x.op != Op::Input || program.graph.inputs[x.input].array != "q")
+      throw std::logic_error("internal error: sin or cos of something other than a joint angle");
+    return true;
+  };
   std::vector<std::string> name(nodes.size());
   std::vector<int> per_body(model.nbodies + 1, 0);
   auto operand = [&](int id) -> std::string {
@@ -117,24 +128,42 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
       const InputRef& in = program.graph.inputs[n.input];
       return fmt::format("{}[{}]", in.array, in.index);
     }
+    if (is_trig(n))
+      return fmt::format("trig.{}_q[{}]", n.op == Op::Sin ? "sin" : "cos",
+                         program.graph.inputs[nodes[n.a].input].index);
     return name[id];
   };
 
-  std::string out;
-  for (const std::string& array : program.input_arrays) {
-    bool used = false;
-    for (std::size_t id = 0; id < nodes.size() && !used; ++id)
-      used = live[id] && nodes[id].op == Op::Input &&
-             program.graph.inputs[nodes[id].input].array == array;
-    if (!used)
-      out += fmt::format("    static_cast<void>({});  // no output of this robot depends on it\n\n",
-                         array);
+  std::map<std::string, bool> used;
+  for (const std::string& array : program.input_arrays) used[array] = false;
+  used["trig"] = false;
+  auto use = [&](int id) {
+    const Node<T>& n = nodes[id];
+    if (n.op == Op::Input) used[program.graph.inputs[n.input].array] = true;
+    if (n.op != Op::Const && n.op != Op::Input && is_trig(n)) used["trig"] = true;
+  };
+  for (std::size_t id = 0; id < nodes.size(); ++id) {
+    if (!live[id] || nodes[id].op == Op::Const || nodes[id].op == Op::Input) continue;
+    if (is_trig(nodes[id])) continue;
+    if (nodes[id].a >= 0) use(nodes[id].a);
+    if (nodes[id].b >= 0) use(nodes[id].b);
   }
+  for (const int id : program.outputs) use(id);
+
+  std::string out;
+  std::vector<std::string> arrays = program.input_arrays;
+  const auto q = std::find(arrays.begin(), arrays.end(), "q");
+  arrays.insert(q == arrays.end() ? q : q + 1, "trig");
+  for (const std::string& array : arrays)
+    if (!used[array])
+      out += fmt::format("    static_cast<void>({});  // {}\n\n", array,
+                         array == "q" && used["trig"] ? "read only through trig"
+                                                      : "no output of this robot depends on it");
   int section_body = -2;
   Pass section_pass = Pass::Forward;
   for (std::size_t id = 0; id < nodes.size(); ++id) {
     const Node<T>& n = nodes[id];
-    if (!live[id] || n.op == Op::Const || n.op == Op::Input) continue;
+    if (!live[id] || n.op == Op::Const || n.op == Op::Input || is_trig(n)) continue;
     if (n.body != section_body || n.pass != section_pass) {
       if (section_body != -2) out += "\n";
       out += section_header<T>(model, n.body, n.pass);
@@ -150,8 +179,8 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
       case Op::Sub: expr = operand(n.a) + " - " + operand(n.b); break;
       case Op::Mul: expr = operand(n.a) + " * " + operand(n.b); break;
       case Op::Div: expr = operand(n.a) + " / " + operand(n.b); break;
-      case Op::Sin: expr = "std::sin(" + operand(n.a) + ")"; break;
-      case Op::Cos: expr = "std::cos(" + operand(n.a) + ")"; break;
+      case Op::Sin:
+      case Op::Cos:
       case Op::Const:
       case Op::Input: break;
     }
@@ -161,6 +190,32 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
   out += "    // ---- outputs\n";
   for (int k = 0; k < program.output_size; ++k)
     out += fmt::format("    {}[{}] = {};\n", program.output_array, k, operand(program.outputs[k]));
+  return out;
+}
+
+std::string emit_joint_trig(const Model<double>& model) {
+  std::vector<bool> revolute(model.nq, false);
+  for (int i = 0; i < model.nbodies; ++i)
+    if (is_revolute(model.joint_type[i])) revolute[model.q_index[i]] = true;
+  // one array call per run of consecutive revolute entries, which the compiler can vectorise
+  std::string out;
+  for (int k = 0; k < model.nq;) {
+    if (!revolute[k]) {
+      ++k;
+      continue;
+    }
+    int end = k;
+    while (end < model.nq && revolute[end]) ++end;
+    if (end - k == 1)
+      out += fmt::format("    dyngen::sincos(q[{0}], trig.sin_q[{0}], trig.cos_q[{0}]);\n", k);
+    else
+      out += fmt::format(
+          "    dyngen::sincos(q + {0}, trig.sin_q + {0}, trig.cos_q + {0}, {1});  // q[{0}..{2}]\n",
+          k, end - k, end - 1);
+    k = end;
+  }
+  if (out.empty())
+    out = "    static_cast<void>(q);  // no revolute joint\n    static_cast<void>(trig);\n";
   return out;
 }
 

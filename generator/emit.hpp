@@ -32,6 +32,9 @@ std::string literal(float value);
 template <class T>
 std::string emit_body(const Program<T>& program, const Model<double>& model);
 
+/// The body of joint_trig(q, trig): dyngen::sincos of every revolute joint's angle.
+std::string emit_joint_trig(const Model<double>& model);
+
 /// "revolute +z", "prismatic axis (0.6, 0, 0.8)"
 std::string joint_description(const Model<double>& model, int body);
 

@@ -176,7 +176,11 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   result.files.push_back({ns + "_dynamics.cpp", fill("dynamics.cpp.in", {{"banner", commented(banner, "//")},
                                                                         {"name", ns},
                                                                         {"namespace", ns},
+                                                                        {"scalar", scalar},
+                                                                        {"joint_trig", emit_joint_trig(model)},
                                                                         {"definitions", definitions}})});
+  // the runtime's own header, verbatim: both sides compute sin and cos with the same code
+  result.files.push_back({"dyngen_sincos.hpp", std::string(template_text("sincos.hpp"))});
   result.files.push_back({ns + "_model.hpp", fill("model.hpp.in", {{"banner", commented(banner, "//")},
                                                                   {"namespace", ns},
                                                                   {"records", model_records<T>(model)},

@@ -82,7 +82,7 @@ numerics::Conditioning write_variant(const Robot& robot, const ReportOptions& op
   std::vector<GeneratedFile> files;
   for (const GeneratedFile& f : generated.files)
     if (f.name == name + "_dynamics.hpp" || f.name == name + "_dynamics.cpp" ||
-        (with_model && f.name == name + "_model.hpp"))
+        f.name == "dyngen_sincos.hpp" || (with_model && f.name == name + "_model.hpp"))
       files.push_back(f);
   write_files(dir.string(), files);
   return generated.conditioning;

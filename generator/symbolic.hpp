@@ -3,7 +3,8 @@
 //
 // While recording, the graph applies only rewrites that IEEE-754 arithmetic makes exact for
 // finite values (DESIGN.md): constant folding in T, x*1, x*(-1), x*0, x+0, x-0, 0-x, 0/x,
-// x/1, -(-x), and reuse of identical nodes. Nothing is reassociated or fused.
+// x/1, -(-x), negations moved out of products and quotients and absorbed by sums, and reuse
+// of identical nodes. Nothing is reassociated or fused.
 #pragma once
 
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "dyngen/sincos.hpp"
 #include "dyngen/trace_hook.hpp"
 
 namespace dyngen::gen {
@@ -109,8 +111,12 @@ class Graph {
       case Op::Sub: return x - y;
       case Op::Mul: return x * y;
       case Op::Div: return x / y;
-      case Op::Sin: return std::sin(x);
-      case Op::Cos: return std::cos(x);
+      case Op::Sin:
+      case Op::Cos: {
+        T sin_x, cos_x;
+        sincos(x, sin_x, cos_x);  // the runtime's, as the generated code calls it
+        return op == Op::Sin ? sin_x : cos_x;
+      }
       default: throw std::logic_error("eval of a non-arithmetic node");
     }
   }
@@ -135,14 +141,22 @@ int Graph<T>::binary(Op op, int x, int y) {
   if (simplify_) {
     const bool cx = is_const(x), cy = is_const(y);
     if (cx && cy) return constant(eval(op, nodes[x].value, nodes[y].value));
+    // Negations move outward and vanish into additions: rounding is symmetric, so
+    // x - (-y) = x + y, x + (-y) = x - y, (-x) - y = -(x + y), (-x) y = -(x y), (-x) / y =
+    // -(x / y) and c (-y) = (-c) y hold exactly (up to the sign of a zero result).
+    const bool nx = nodes[x].op == Op::Neg, ny = nodes[y].op == Op::Neg;
     switch (op) {
       case Op::Add:
         if (cx && nodes[x].value == T(0)) return y;  // +-0 + y = y (up to the sign of zero)
         if (cy && nodes[y].value == T(0)) return x;
+        if (ny) return binary(Op::Sub, x, nodes[y].a);
+        if (nx) return binary(Op::Sub, y, nodes[x].a);
         break;
       case Op::Sub:
         if (cy && nodes[y].value == T(0)) return x;
         if (cx && nodes[x].value == T(0)) return unary(Op::Neg, y);
+        if (ny) return binary(Op::Add, x, nodes[y].a);
+        if (nx) return unary(Op::Neg, binary(Op::Add, nodes[x].a, y));
         break;
       case Op::Mul:
         if (cx && nodes[x].value == T(0)) return constant(T(0));  // finite y
@@ -151,10 +165,18 @@ int Graph<T>::binary(Op op, int x, int y) {
         if (cy && nodes[y].value == T(1)) return x;
         if (cx && nodes[x].value == T(-1)) return unary(Op::Neg, y);
         if (cy && nodes[y].value == T(-1)) return unary(Op::Neg, x);
+        if (cx && ny) return binary(Op::Mul, constant(-nodes[x].value), nodes[y].a);
+        if (cy && nx) return binary(Op::Mul, nodes[x].a, constant(-nodes[y].value));
+        if (nx && ny) return binary(Op::Mul, nodes[x].a, nodes[y].a);
+        if (nx) return unary(Op::Neg, binary(Op::Mul, nodes[x].a, y));
+        if (ny) return unary(Op::Neg, binary(Op::Mul, x, nodes[y].a));
         break;
       case Op::Div:
         if (cx && nodes[x].value == T(0)) return constant(T(0));  // finite, non-zero y
         if (cy && nodes[y].value == T(1)) return x;
+        if (nx && ny) return binary(Op::Div, nodes[x].a, nodes[y].a);
+        if (nx) return unary(Op::Neg, binary(Op::Div, nodes[x].a, y));
+        if (ny) return unary(Op::Neg, binary(Op::Div, x, nodes[y].a));
         break;
       default: break;
     }

@@ -18,6 +18,7 @@ packages=(
   gnuplot-nox              # dyngen report's plot
   libmujoco-dev            # peer comparison (tests/peers/mujoco)
   liborocos-kdl-dev libkdl-parser-dev  # peer comparison (tests/peers/kdl)
+  valgrind                 # instruction counts (scripts/callgrind.sh)
 )
 
 missing=()

@@ -2,12 +2,12 @@
 // Robot 'planar5': 5 joints.
 // Options: --algorithms rnea,crba,aba --scalar double --gravity 0,-9.81,0 --name planar5
 // Operations per call (add counts add and sub):
-//   rnea  generated: add 88, mul 107, div 0, neg 25, sin 4, cos 4
+//   rnea  generated: add 88, mul 107, div 0, neg 0, sin 4, cos 4
 //         runtime:   add 697, mul 823, div 0, neg 3, sin 4, cos 4
-//   crba  generated: add 42, mul 36, div 0, neg 5, sin 3, cos 3
+//   crba  generated: add 39, mul 31, div 0, neg 1, sin 3, cos 3
 //         runtime:   add 609, mul 784, div 0, neg 0, sin 4, cos 4
-//   aba   generated: add 172, mul 186, div 14, neg 32, sin 4, cos 4
-//         runtime:   add 1708, mul 1987, div 29, neg 18, sin 4, cos 4
+//   aba   generated: add 172, mul 199, div 4, neg 0, sin 4, cos 4
+//         runtime:   add 1708, mul 2016, div 5, neg 18, sin 4, cos 4
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 6.7e+02, max 2.6e+03: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.025 (joint 'link1_joint'), articulated inertias span 81:
@@ -15,7 +15,8 @@
 #pragma once
 
 /// Dynamics of robot 'planar5', specialised by dyngen: fully unrolled, no heap, no exceptions,
-/// no dependency beyond <cmath>, no state (thread-safe).
+/// no dependency beyond <cmath> and dyngen_sincos.hpp (which comes with it), no state
+/// (thread-safe).
 ///
 /// Arrays are plain C arrays of double, indexed by joint in the order of joint_names:
 ///   q[nq]       joint positions: rad (revolute), m (prismatic)
@@ -39,13 +40,30 @@ inline constexpr const char* joint_names[nv] = {
     "link5_joint",
 };
 
+/// Sines and cosines of the revolute joints' angles, trig.sin_q[k] = sin(q[k]); entries of
+/// other joints are never read. Each function below comes twice: f(q, ...) and
+/// f_trig(q, trig, ...), so that one joint_trig(q, trig) serves several calls at the same q.
+/// Both give the same bits when trig comes from joint_trig (or from dyngen::sincos).
+struct JointTrig {
+    double sin_q[nq];
+    double cos_q[nq];
+};
+
+/// Fills trig for q, with dyngen::sincos (about 1 ulp).
+void joint_trig(const double q[nq], JointTrig& trig) noexcept;
+
 /// Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q).
 void rnea(const double q[nq], const double v[nv], const double a[nv], double tau[nv]) noexcept;
+void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double a[nv],
+               double tau[nv]) noexcept;
 
 /// Joint-space mass matrix (composite rigid body algorithm), M[i * nv + j].
 void crba(const double q[nq], double M[nv * nv]) noexcept;
+void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noexcept;
 
 /// Forward dynamics (articulated-body algorithm): qdd = M(q)^-1 (tau - C(q, v) v - g(q)).
 void aba(const double q[nq], const double v[nv], const double tau[nv], double qdd[nv]) noexcept;
+void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double tau[nv],
+              double qdd[nv]) noexcept;
 
 }  // namespace planar5

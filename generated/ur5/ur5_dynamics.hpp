@@ -2,12 +2,12 @@
 // Robot 'ur5': 6 joints.
 // Options: --algorithms rnea,crba,aba --scalar double --gravity 0,0,-9.81 --name ur5
 // Operations per call (add counts add and sub):
-//   rnea  generated: add 239, mul 325, div 0, neg 42, sin 5, cos 5
+//   rnea  generated: add 235, mul 325, div 0, neg 0, sin 5, cos 5
 //         runtime:   add 846, mul 1002, div 0, neg 3, sin 6, cos 6
-//   crba  generated: add 114, mul 132, div 0, neg 14, sin 5, cos 5
+//   crba  generated: add 108, mul 122, div 0, neg 1, sin 5, cos 5
 //         runtime:   add 801, mul 1038, div 0, neg 0, sin 6, cos 6
-//   aba   generated: add 547, mul 713, div 24, neg 63, sin 5, cos 5
-//         runtime:   add 2106, mul 2451, div 36, neg 21, sin 6, cos 6
+//   aba   generated: add 543, mul 729, div 5, neg 0, sin 5, cos 5
+//         runtime:   add 2106, mul 2487, div 6, neg 21, sin 6, cos 6
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 1.7e+02, max 2.9e+02: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.026 (joint 'shoulder_pan_joint'), articulated inertias span 90:
@@ -15,7 +15,8 @@
 #pragma once
 
 /// Dynamics of robot 'ur5', specialised by dyngen: fully unrolled, no heap, no exceptions,
-/// no dependency beyond <cmath>, no state (thread-safe).
+/// no dependency beyond <cmath> and dyngen_sincos.hpp (which comes with it), no state
+/// (thread-safe).
 ///
 /// Arrays are plain C arrays of double, indexed by joint in the order of joint_names:
 ///   q[nq]       joint positions: rad (revolute), m (prismatic)
@@ -40,13 +41,30 @@ inline constexpr const char* joint_names[nv] = {
     "wrist_3_joint",
 };
 
+/// Sines and cosines of the revolute joints' angles, trig.sin_q[k] = sin(q[k]); entries of
+/// other joints are never read. Each function below comes twice: f(q, ...) and
+/// f_trig(q, trig, ...), so that one joint_trig(q, trig) serves several calls at the same q.
+/// Both give the same bits when trig comes from joint_trig (or from dyngen::sincos).
+struct JointTrig {
+    double sin_q[nq];
+    double cos_q[nq];
+};
+
+/// Fills trig for q, with dyngen::sincos (about 1 ulp).
+void joint_trig(const double q[nq], JointTrig& trig) noexcept;
+
 /// Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q).
 void rnea(const double q[nq], const double v[nv], const double a[nv], double tau[nv]) noexcept;
+void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double a[nv],
+               double tau[nv]) noexcept;
 
 /// Joint-space mass matrix (composite rigid body algorithm), M[i * nv + j].
 void crba(const double q[nq], double M[nv * nv]) noexcept;
+void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noexcept;
 
 /// Forward dynamics (articulated-body algorithm): qdd = M(q)^-1 (tau - C(q, v) v - g(q)).
 void aba(const double q[nq], const double v[nv], const double tau[nv], double qdd[nv]) noexcept;
+void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double tau[nv],
+              double qdd[nv]) noexcept;
 
 }  // namespace ur5

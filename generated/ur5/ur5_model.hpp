@@ -2,12 +2,12 @@
 // Robot 'ur5': 6 joints.
 // Options: --algorithms rnea,crba,aba --scalar double --gravity 0,0,-9.81 --name ur5
 // Operations per call (add counts add and sub):
-//   rnea  generated: add 239, mul 325, div 0, neg 42, sin 5, cos 5
+//   rnea  generated: add 235, mul 325, div 0, neg 0, sin 5, cos 5
 //         runtime:   add 846, mul 1002, div 0, neg 3, sin 6, cos 6
-//   crba  generated: add 114, mul 132, div 0, neg 14, sin 5, cos 5
+//   crba  generated: add 108, mul 122, div 0, neg 1, sin 5, cos 5
 //         runtime:   add 801, mul 1038, div 0, neg 0, sin 6, cos 6
-//   aba   generated: add 547, mul 713, div 24, neg 63, sin 5, cos 5
-//         runtime:   add 2106, mul 2451, div 36, neg 21, sin 6, cos 6
+//   aba   generated: add 543, mul 729, div 5, neg 0, sin 5, cos 5
+//         runtime:   add 2106, mul 2487, div 6, neg 21, sin 6, cos 6
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 1.7e+02, max 2.9e+02: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.026 (joint 'shoulder_pan_joint'), articulated inertias span 90:

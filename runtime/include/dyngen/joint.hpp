@@ -6,14 +6,26 @@
 #include <cmath>
 
 #include "dyngen/model.hpp"
+#include "dyngen/sincos.hpp"
 
 namespace dyngen {
+
+/// s = sin(q), c = cos(q). float and double use dyngen::sincos, which the generated code also
+/// calls, so that both agree to the bit; other scalars (the generator's symbolic one, MPFR,
+/// long double) use their own sin and cos.
+template <class S>
+void joint_sincos(const S& q, S& s, S& c) {
+  using std::cos;
+  using std::sin;
+  s = sin(q);
+  c = cos(q);
+}
+inline void joint_sincos(double q, double& s, double& c) { sincos(q, s, c); }
+inline void joint_sincos(float q, float& s, float& c) { sincos(q, s, c); }
 
 /// Xup = XJ(q) X_tree for body i (RBDA eq. 4.32 with Table 4.1's XJ).
 template <class S>
 Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
-  using std::cos;
-  using std::sin;
   const Xform<S>& Xt = model.X_tree[i];
   const Mat3<S>& T = Xt.E;
   const Vec3<S>& k = model.joint_axis[i];
@@ -21,26 +33,33 @@ Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
   switch (model.joint_type[i]) {
     case JointType::RevoluteX: {
       // rot_x(q) E_tree; k.x = +-1 turns the rotation's sense
-      const S c = cos(q), s = k.x * sin(q);
+      S c, s;
+      joint_sincos(q, s, c);
+      s = k.x * s;
       return {{T.xx, T.xy, T.xz, c * T.yx + s * T.zx, c * T.yy + s * T.zy, c * T.yz + s * T.zz,
                c * T.zx - s * T.yx, c * T.zy - s * T.yy, c * T.zz - s * T.yz},
               Xt.r};
     }
     case JointType::RevoluteY: {
-      const S c = cos(q), s = k.y * sin(q);
+      S c, s;
+      joint_sincos(q, s, c);
+      s = k.y * s;
       return {{c * T.xx - s * T.zx, c * T.xy - s * T.zy, c * T.xz - s * T.zz, T.yx, T.yy, T.yz,
                s * T.xx + c * T.zx, s * T.xy + c * T.zy, s * T.xz + c * T.zz},
               Xt.r};
     }
     case JointType::RevoluteZ: {
-      const S c = cos(q), s = k.z * sin(q);
+      S c, s;
+      joint_sincos(q, s, c);
+      s = k.z * s;
       return {{c * T.xx + s * T.yx, c * T.xy + s * T.yy, c * T.xz + s * T.yz, c * T.yx - s * T.xx,
                c * T.yy - s * T.xy, c * T.yz - s * T.xz, T.zx, T.zy, T.zz},
               Xt.r};
     }
     case JointType::Revolute: {
       // E = c 1 + (1 - c) k k^T - s k x (RBDA eq. 2.24, transposed)
-      const S c = cos(q), s = sin(q);
+      S c, s;
+      joint_sincos(q, s, c);
       const S t = S(1) - c;
       const Mat3<S> EJ{t * k.x * k.x + c,       t * k.x * k.y + s * k.z, t * k.x * k.z - s * k.y,
                        t * k.x * k.y - s * k.z, t * k.y * k.y + c,       t * k.y * k.z + s * k.x,

@@ -1,0 +1,46 @@
+// The operations of one call of each algorithm of the hand-written planar chain
+// (planar_reference.hpp), counted with op_counter.hpp's Counted: for work_counts.cpp and
+// call_counts.cpp.
+#pragma once
+
+#include <vector>
+
+#include "dyngen/model.hpp"
+#include "dyngen/numerics/random.hpp"
+#include "op_counter.hpp"
+#include "planar_reference.hpp"
+
+namespace dyngen::bench {
+
+struct PlanarCounts {
+  OpTally rnea, crba, aba;
+};
+
+/// The counts at one random state; the code has no branch on values, so any state gives them.
+inline PlanarCounts count_planar_chain(const Model<double>& model) {
+  PlanarChain<Counted> chain(model);
+  numerics::Random rng(1);
+  const numerics::State s = numerics::random_state(model, rng);
+  const std::vector<Counted> q(s.q.begin(), s.q.end()), qd(s.qd.begin(), s.qd.end()),
+      qdd(s.qdd.begin(), s.qdd.end()), tau(s.tau.begin(), s.tau.end());
+  std::vector<Counted> out(model.nv * model.nv);
+  PlanarCounts counts;
+  {
+    const CountScope scope;
+    chain.rnea(q.data(), qd.data(), qdd.data(), out.data());
+    counts.rnea = scope.counts();
+  }
+  {
+    const CountScope scope;
+    chain.crba(q.data(), out.data());
+    counts.crba = scope.counts();
+  }
+  {
+    const CountScope scope;
+    chain.aba(q.data(), qd.data(), tau.data(), out.data());
+    counts.aba = scope.counts();
+  }
+  return counts;
+}
+
+}  // namespace dyngen::bench
