@@ -3,6 +3,7 @@
 // std_sin_cos_separate keeps them apart) and glibc's ::sincos and ::sincosf, on arrays of 7
 // angles (a robot's joints), 30 and 1024 uniform in [-pi, pi]; 1024 also in [-1e4, 1e4] and,
 // for double, log-uniform in [2^21, 2^1000] (dyngen's Payne-Hanek path, taken from 2^21 on).
+// dyngen_double_array times the array form, which the generated joint_trig calls.
 // The second argument of each benchmark names the range: 0 [-pi, pi], 1 [-1e4, 1e4], 2 huge.
 //
 // The counter per_angle is the CPU time of one sine and cosine pair; the loop over the array is
@@ -56,6 +57,22 @@ void run(benchmark::State& state, Fn fn) {
 void dyngen_double(benchmark::State& state) {
   run<double>(state, [](double x, double& s, double& c) { dyngen::sincos(x, s, c); });
 }
+/// The array form, as the generated joint_trig calls it: one call for the whole array.
+void dyngen_double_array(benchmark::State& state) {
+  const std::int64_t n = state.range(0);
+  const std::vector<double> x = angles<double>(n, state.range(1));
+  std::vector<double> s(x.size()), c(x.size());
+  for (auto _ : state) {
+    dyngen::sincos(x.data(), s.data(), c.data(), static_cast<int>(n));
+    benchmark::DoNotOptimize(s.data());
+    benchmark::DoNotOptimize(c.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["per_angle"] =
+      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
+                                                     benchmark::Counter::kInvert);
+}
+
 void dyngen_float(benchmark::State& state) {
   run<float>(state, [](float x, float& s, float& c) { dyngen::sincos(x, s, c); });
 }
@@ -100,6 +117,7 @@ void sizes_and_huge(benchmark::internal::Benchmark* b) {
 }  // namespace
 
 BENCHMARK(dyngen_double)->Apply(sizes_and_huge);
+BENCHMARK(dyngen_double_array)->Apply(sizes_and_huge);
 BENCHMARK(std_sin_cos)->Apply(sizes_and_huge);
 BENCHMARK(std_sin_cos_separate)->Apply(sizes_and_huge);
 BENCHMARK(glibc_sincos)->Apply(sizes_and_huge);

@@ -80,8 +80,8 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
   for (const FunctionCounts& c : counts)
     text += fmt::format("\n  {:<4}  generated: {}\n        runtime:   {}", algorithm_name(c.algorithm),
                         to_string(c.generated), to_string(c.runtime));
-  if (robot.snapped) text += "\n" + snap_text(*robot.snapped);
-  return text + "\n" + conditioning;
+  if (robot.snapped) text += fmt::format("\n{}", snap_text(*robot.snapped));
+  return fmt::format("{}\n{}", text, conditioning);
 }
 
 template <class T>
