@@ -23,4 +23,5 @@ ctest --test-dir gen/ur5/build --output-on-failure | grep -E "Test +#|tests pass
 
 echo
 echo "The generated code is in gen/ur5/: ur5_dynamics.hpp (API and array layout),"
-echo "ur5_dynamics.cpp (rnea, crba, aba), ur5_model.hpp and ur5_check.cpp (the check)."
+echo "ur5_dynamics.cpp (rnea, crba, aba), dyngen_sincos.hpp (their sin and cos), ur5_model.hpp"
+echo "and ur5_check.cpp (the check)."
