@@ -42,9 +42,9 @@ constexpr int state_count = 256;  // cycled through, so the inputs change every 
 constexpr std::uint64_t seed = 20261121;
 constexpr double tolerance = 1e-8;  // of the check against the runtime (the peers pass 1e-9)
 
-enum Algorithm { Rnea, Crba, Aba };
+using gen::Algorithm;
+constexpr Algorithm Rnea = Algorithm::Rnea, Crba = Algorithm::Crba, Aba = Algorithm::Aba;
 constexpr Algorithm algorithms[] = {Rnea, Crba, Aba};
-constexpr const char* algorithm_names[] = {"rnea", "crba", "aba"};
 enum Implementation { Generated, Snapped, Runtime, Mujoco, Kdl };
 constexpr const char* implementation_names[] = {"generated", "snapped", "runtime", "mujoco",
                                                 "kdl"};
@@ -79,14 +79,7 @@ class GeneratedCode {
 
   bool has(Algorithm) const { return f_.rnea != nullptr; }
 
-  void run(Algorithm a, int k) {
-    const State& s = states_[k];
-    switch (a) {
-      case Rnea: f_.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out_.data()); break;
-      case Crba: f_.crba(s.q.data(), out_.data()); break;
-      case Aba: f_.aba(s.q.data(), s.qd.data(), s.tau.data(), out_.data()); break;
-    }
-  }
+  void run(Algorithm a, int k) { call(f_, a, states_[k], out_.data()); }
 
   double error(Algorithm a, int k) {
     run(a, k);
@@ -333,7 +326,7 @@ struct Subject {
 };
 
 std::string benchmark_name(const Package& p, Algorithm a, Implementation i) {
-  return std::string(p.name) + "/" + algorithm_names[a] + "/" + implementation_names[i];
+  return std::string(p.name) + "/" + gen::algorithm_name(a) + "/" + implementation_names[i];
 }
 
 /// Checks each algorithm of one implementation against the runtime on a few states, then
@@ -359,12 +352,8 @@ void add(const Package& p, Implementation i, Code* code) {
 }
 
 std::unique_ptr<Subject> make_subject(const Package& p) {
-  gen::LoadOptions options;
-  options.floating_base = p.floating_base;
-  options.mimic_independent = p.mimic_independent;
-  options.lock_massless = p.lock_massless;
   auto s = std::unique_ptr<Subject>(
-      new Subject{p, gen::load_robot(p.input, options), {}, {}, {}, {}, {}, {}});
+      new Subject{p, gen::load_robot(p.input, load_options(p)), {}, {}, {}, {}, {}, {}});
   Random rng(seed);
   for (int k = 0; k < state_count; ++k)
     s->states.push_back(numerics::random_state(s->robot.model, rng));
@@ -416,7 +405,7 @@ OperationCounts operation_counts(const char* header) {
   for (std::string text; std::getline(in, text) && text.starts_with("//");) {
     std::smatch m;
     if (!std::regex_match(text, m, line)) continue;
-    if (m[1].matched) algorithm = m[1] == "rnea" ? Rnea : m[1] == "crba" ? Crba : Aba;
+    if (m[1].matched) algorithm = m[1] == "rnea" ? 0 : m[1] == "crba" ? 1 : 2;
     long total = 0;
     const std::string list = m[3];
     for (std::sregex_iterator it(list.begin(), list.end(), count), end; it != end; ++it)
@@ -480,14 +469,14 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
                  m = time(p, a, Mujoco), k = time(p, a, Kdl);
       if (!g && !sn && !r && !m && !k) continue;  // filtered out
       md << "| " << robot << " | " << p.base << " | " << s->robot.model.nv << " | "
-         << algorithm_names[a] << " | " << format_ns(g) << " | " << format_ns(sn) << " | "
+         << gen::algorithm_name(a) << " | " << format_ns(g) << " | " << format_ns(sn) << " | "
          << format_ns(r) << " | " << format_ns(m) << " | " << format_ns(k) << " | "
          << (s->kdl->is_chain() ? "chain" : "tree") << " | " << format_ratio(r, g) << " | "
          << format_ratio(m, g) << " | " << format_ratio(k, g) << " | " << format_ratio(r, sn)
          << " | " << format_ratio(m, sn) << " | " << format_ratio(k, sn) << " | "
-         << format_ratio(k, r) << " | " << ops.generated[a] << " | "
-         << (p.snapped_header ? std::to_string(snapped_ops.generated[a]) : "-") << " | "
-         << ops.runtime[a] << " |\n";
+         << format_ratio(k, r) << " | " << ops.generated[static_cast<int>(a)] << " | "
+         << (p.snapped_header ? std::to_string(snapped_ops.generated[static_cast<int>(a)]) : "-") << " | "
+         << ops.runtime[static_cast<int>(a)] << " |\n";
     }
   }
 
@@ -498,7 +487,7 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
   const char* kinds[] = {"planar_chain", "spatial_chain"};
   for (const char* kind : kinds)
     for (const Algorithm a : algorithms) {
-      gp << "$" << kind << "_" << algorithm_names[a]
+      gp << "$" << kind << "_" << gen::algorithm_name(a)
          << " << EOD\n# links generated runtime mujoco kdl ops_generated ops_runtime\n";
       for (const auto& s : subjects) {
         const Package& p = s->package;
@@ -509,7 +498,7 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
           const auto t = time(p, a, i);
           gp << " " << (t ? std::to_string(*t) : "NaN");
         }
-        gp << " " << ops.generated[a] << " " << ops.runtime[a] << "\n";
+        gp << " " << ops.generated[static_cast<int>(a)] << " " << ops.runtime[static_cast<int>(a)] << "\n";
       }
       gp << "EOD\n";
     }
@@ -522,21 +511,21 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
         "spatial)'\n";
   const char* colors[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a"};
   for (const Algorithm a : algorithms) {
-    gp << "set title '" << algorithm_names[a] << ": time per call'\nset ylabel 'ns'\nplot ";
+    gp << "set title '" << gen::algorithm_name(a) << ": time per call'\nset ylabel 'ns'\nplot ";
     for (int i = 0; i < 4; ++i)
       for (int kind = 0; kind < 2; ++kind)
-        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << algorithm_names[a]
+        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << gen::algorithm_name(a)
            << " using 1:" << i + 2 << " with linespoints lc rgb '" << colors[i] << "' dt "
            << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[plotted[i]]
            << (kind ? " spatial" : " planar") << "'";
     gp << "\n";
   }
   for (const Algorithm a : algorithms) {
-    gp << "set title '" << algorithm_names[a]
+    gp << "set title '" << gen::algorithm_name(a)
        << ": operations per call'\nset ylabel 'add, mul, div, neg, sin, cos'\nplot ";
     for (int i = 0; i < 2; ++i)
       for (int kind = 0; kind < 2; ++kind)
-        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << algorithm_names[a]
+        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << gen::algorithm_name(a)
            << " using 1:" << i + 6 << " with linespoints lc rgb '" << colors[i] << "' dt "
            << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[plotted[i]]
            << (kind ? " spatial" : " planar") << "'";

@@ -83,12 +83,7 @@ bool has(const Package& p, const std::string& implementation) {
 }
 
 gen::Robot load(const Package& p, bool snapped) {
-  gen::LoadOptions options;
-  options.floating_base = p.floating_base;
-  options.mimic_independent = p.mimic_independent;
-  options.lock_massless = p.lock_massless;
-  if (snapped) options.snap = 1e-9;
-  return gen::load_robot(p.input, options);
+  return gen::load_robot(p.input, load_options(p, snapped));
 }
 
 // ---- the calls -----------------------------------------------------------------------------
@@ -100,11 +95,7 @@ struct Generated {
 
 void call_generated(void* g, const numerics::State& s, double* out) {
   const Generated& x = *static_cast<Generated*>(g);
-  switch (x.a) {
-    case Algorithm::Rnea: x.f.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out); break;
-    case Algorithm::Crba: x.f.crba(s.q.data(), out); break;
-    case Algorithm::Aba: x.f.aba(s.q.data(), s.qd.data(), s.tau.data(), out); break;
-  }
+  call(x.f, x.a, s, out);
 }
 
 struct Runtime {
@@ -179,13 +170,7 @@ std::map<std::string, long> operation_counts(const Package& p, Algorithm a) {
   ops["runtime"] = gen::count_ops(gen::trace<double>(a, robot.model, false), false).total();
   if (has(p, "snapped"))
     ops["snapped"] = gen::count_ops(gen::trace<double>(a, load(p, true).model, true)).total();
-  if (has(p, "hand-written")) {
-    const PlanarCounts counts = count_planar_chain(robot.model);
-    ops["hand-written"] = (a == Algorithm::Rnea   ? counts.rnea
-                           : a == Algorithm::Crba ? counts.crba
-                                                  : counts.aba)
-                              .total();
-  }
+  if (has(p, "hand-written")) ops["hand-written"] = count_planar_chain(robot.model, a).total();
   return ops;
 }
 

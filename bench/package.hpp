@@ -3,6 +3,10 @@
 
 #include <vector>
 
+#include "dyngen/numerics/random.hpp"
+#include "robot.hpp"
+#include "trace.hpp"
+
 namespace dyngen::bench {
 
 /// The three functions of one generated package.
@@ -28,5 +32,24 @@ struct Package {
 
 /// Every package, in the order of bench/CMakeLists.txt.
 const std::vector<Package>& packages();
+
+/// The options dyngen loaded the package's robot with (snapped: those of its snapped code).
+inline gen::LoadOptions load_options(const Package& p, bool snapped = false) {
+  gen::LoadOptions options;
+  options.floating_base = p.floating_base;
+  options.mimic_independent = p.mimic_independent;
+  options.lock_massless = p.lock_massless;
+  if (snapped) options.snap = 1e-9;
+  return options;
+}
+
+/// One call of a generated function at state s: tau, M (row-major) or qdd into out.
+inline void call(const Functions& f, gen::Algorithm a, const numerics::State& s, double* out) {
+  switch (a) {
+    case gen::Algorithm::Rnea: f.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out); break;
+    case gen::Algorithm::Crba: f.crba(s.q.data(), out); break;
+    case gen::Algorithm::Aba: f.aba(s.q.data(), s.qd.data(), s.tau.data(), out); break;
+  }
+}
 
 }  // namespace dyngen::bench

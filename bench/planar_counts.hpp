@@ -1,4 +1,4 @@
-// The operations of one call of each algorithm of the hand-written planar chain
+// The operations of one call of an algorithm of the hand-written planar chain
 // (planar_reference.hpp), counted with op_counter.hpp's Counted: for work_counts.cpp and
 // call_counts.cpp.
 #pragma once
@@ -9,38 +9,26 @@
 #include "dyngen/numerics/random.hpp"
 #include "op_counter.hpp"
 #include "planar_reference.hpp"
+#include "trace.hpp"
 
 namespace dyngen::bench {
 
-struct PlanarCounts {
-  OpTally rnea, crba, aba;
-};
-
-/// The counts at one random state; the code has no branch on values, so any state gives them.
-inline PlanarCounts count_planar_chain(const Model<double>& model) {
+/// The counts of algorithm a at one random state; the code has no branch on values, so any
+/// state gives them.
+inline OpTally count_planar_chain(const Model<double>& model, gen::Algorithm a) {
   PlanarChain<Counted> chain(model);
   numerics::Random rng(1);
   const numerics::State s = numerics::random_state(model, rng);
   const std::vector<Counted> q(s.q.begin(), s.q.end()), qd(s.qd.begin(), s.qd.end()),
       qdd(s.qdd.begin(), s.qdd.end()), tau(s.tau.begin(), s.tau.end());
   std::vector<Counted> out(model.nv * model.nv);
-  PlanarCounts counts;
-  {
-    const CountScope scope;
-    chain.rnea(q.data(), qd.data(), qdd.data(), out.data());
-    counts.rnea = scope.counts();
+  const CountScope scope;
+  switch (a) {
+    case gen::Algorithm::Rnea: chain.rnea(q.data(), qd.data(), qdd.data(), out.data()); break;
+    case gen::Algorithm::Crba: chain.crba(q.data(), out.data()); break;
+    case gen::Algorithm::Aba: chain.aba(q.data(), qd.data(), tau.data(), out.data()); break;
   }
-  {
-    const CountScope scope;
-    chain.crba(q.data(), out.data());
-    counts.crba = scope.counts();
-  }
-  {
-    const CountScope scope;
-    chain.aba(q.data(), qd.data(), tau.data(), out.data());
-    counts.aba = scope.counts();
-  }
-  return counts;
+  return scope.counts();
 }
 
 }  // namespace dyngen::bench

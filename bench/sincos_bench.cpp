@@ -37,14 +37,15 @@ std::vector<F> angles(std::int64_t n, std::int64_t range) {
   return x;
 }
 
-/// Times fn(x[i], s[i], c[i]) over the array; state.range(0) angles, state.range(1) the Range.
-template <class F, class Fn>
-void run(benchmark::State& state, Fn fn) {
+/// Times all(x, s, c, n), one pass over the array; state.range(0) angles, state.range(1) the
+/// Range.
+template <class F, class All>
+void run_array(benchmark::State& state, All all) {
   const std::int64_t n = state.range(0);
   const std::vector<F> x = angles<F>(n, state.range(1));
   std::vector<F> s(x.size()), c(x.size());
   for (auto _ : state) {
-    for (std::size_t i = 0; i < x.size(); ++i) fn(x[i], s[i], c[i]);
+    all(x.data(), s.data(), c.data(), static_cast<int>(n));
     benchmark::DoNotOptimize(s.data());
     benchmark::DoNotOptimize(c.data());
     benchmark::ClobberMemory();
@@ -54,23 +55,22 @@ void run(benchmark::State& state, Fn fn) {
                                                      benchmark::Counter::kInvert);
 }
 
+/// Times fn(x[i], s[i], c[i]) for each angle, the loop being the caller's.
+template <class F, class Fn>
+void run(benchmark::State& state, Fn fn) {
+  run_array<F>(state, [fn](const F* x, F* s, F* c, int n) {
+    for (int i = 0; i < n; ++i) fn(x[i], s[i], c[i]);
+  });
+}
+
 void dyngen_double(benchmark::State& state) {
   run<double>(state, [](double x, double& s, double& c) { dyngen::sincos(x, s, c); });
 }
 /// The array form, as the generated joint_trig calls it: one call for the whole array.
 void dyngen_double_array(benchmark::State& state) {
-  const std::int64_t n = state.range(0);
-  const std::vector<double> x = angles<double>(n, state.range(1));
-  std::vector<double> s(x.size()), c(x.size());
-  for (auto _ : state) {
-    dyngen::sincos(x.data(), s.data(), c.data(), static_cast<int>(n));
-    benchmark::DoNotOptimize(s.data());
-    benchmark::DoNotOptimize(c.data());
-    benchmark::ClobberMemory();
-  }
-  state.counters["per_angle"] =
-      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
-                                                     benchmark::Counter::kInvert);
+  run_array<double>(state, [](const double* x, double* s, double* c, int n) {
+    dyngen::sincos(x, s, c, n);
+  });
 }
 
 void dyngen_float(benchmark::State& state) {

@@ -38,14 +38,10 @@ using gen::Algorithm;
 constexpr int chain_links[] = {WORK_COUNT_LINKS};
 constexpr Algorithm algorithms[] = {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba};
 
-/// Operations by kind; traces have no sqrt, so theirs is 0.
-struct Kinds {
-  long add = 0, mul = 0, div = 0, neg = 0, sin = 0, cos = 0, sqrt = 0;
-  long total() const { return add + mul + div + neg + sin + cos + sqrt; }
-};
+/// Operations by kind, as the counting scalar tallies them; traces have no sqrt, so theirs is 0.
+using Kinds = OpTally;
 
 Kinds kinds(const gen::OpCounts& c) { return {c.add, c.mul, c.div, c.neg, c.sin, c.cos, 0}; }
-Kinds kinds(const OpTally& c) { return {c.add, c.mul, c.div, c.neg, c.sin, c.cos, c.sqrt}; }
 
 Kinds operator+(const Kinds& a, const Kinds& b) {
   return {a.add + b.add, a.mul + b.mul, a.div + b.div,  a.neg + b.neg,
@@ -146,7 +142,7 @@ Kinds dense_solve_counts(const Model<double>& model) {
       hc(h.begin(), h.end());
   const CountScope scope;
   const std::vector<Counted> x = ldlt_solve<Counted>(n, Mc, tau, hc);
-  const Kinds counts = kinds(scope.counts());
+  const Kinds counts = scope.counts();
   std::vector<double> solved;
   for (const Counted& xi : x) solved.push_back(xi.value);
   const double error = test::relative_error(test::to_eigen(solved), test::to_eigen(qdd));
@@ -159,16 +155,11 @@ std::vector<Row> count_model(const std::string& name, const std::string& kind,
                              const std::string& base, const Model<double>& model) {
   std::fprintf(stderr, "  %s (%s base, %d DoF)\n", name.c_str(), base.c_str(), model.nv);
   std::vector<Row> rows;
-  std::optional<PlanarCounts> planar;
-  if (kind == "planar_chain") planar = count_planar_chain(model);
   for (const Algorithm a : algorithms) {
     Row r{name, kind, base, model.nv, a, seed_work(a, model.nv), {}, {}, {}};
     r.generated = kinds(gen::count_ops(gen::trace<double>(a, model, true)));
     r.runtime = kinds(gen::count_ops(gen::trace<double>(a, model, false), false));
-    if (planar)
-      r.hand_written = kinds(a == Algorithm::Rnea   ? planar->rnea
-                             : a == Algorithm::Crba ? planar->crba
-                                                    : planar->aba);
+    if (kind == "planar_chain") r.hand_written = count_planar_chain(model, a);
     rows.push_back(r);
   }
   return rows;

@@ -134,19 +134,20 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
     return name[id];
   };
 
+  // the arrays that the emitted statements and output stores read
   std::map<std::string, bool> used;
-  for (const std::string& array : program.input_arrays) used[array] = false;
-  used["trig"] = false;
   auto use = [&](int id) {
     const Node<T>& n = nodes[id];
-    if (n.op == Op::Input) used[program.graph.inputs[n.input].array] = true;
-    if (n.op != Op::Const && n.op != Op::Input && is_trig(n)) used["trig"] = true;
+    if (n.op == Op::Input)
+      used[program.graph.inputs[n.input].array] = true;
+    else if (is_trig(n))
+      used["trig"] = true;
   };
   for (std::size_t id = 0; id < nodes.size(); ++id) {
-    if (!live[id] || nodes[id].op == Op::Const || nodes[id].op == Op::Input) continue;
-    if (is_trig(nodes[id])) continue;
-    if (nodes[id].a >= 0) use(nodes[id].a);
-    if (nodes[id].b >= 0) use(nodes[id].b);
+    const Node<T>& n = nodes[id];
+    if (!live[id] || n.op == Op::Const || n.op == Op::Input || is_trig(n)) continue;
+    if (n.a >= 0) use(n.a);
+    if (n.b >= 0) use(n.b);
   }
   for (const int id : program.outputs) use(id);
 
