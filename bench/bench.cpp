@@ -45,9 +45,9 @@ constexpr double tolerance = 1e-8;  // of the check against the runtime (the pee
 using gen::Algorithm;
 constexpr Algorithm Rnea = Algorithm::Rnea, Crba = Algorithm::Crba, Aba = Algorithm::Aba;
 constexpr Algorithm algorithms[] = {Rnea, Crba, Aba};
-enum Implementation { Generated, Snapped, Runtime, Mujoco, Kdl };
-constexpr const char* implementation_names[] = {"generated", "snapped", "runtime", "mujoco",
-                                                "kdl"};
+enum Implementation { Generated, Snapped, Unrolled, Runtime, Mujoco, Kdl };
+constexpr const char* implementation_names[] = {"generated", "snapped", "unrolled", "runtime",
+                                                "mujoco",    "kdl"};
 
 int output_size(Algorithm a, int nv) { return a == Crba ? nv * nv : nv; }
 
@@ -319,7 +319,7 @@ struct Subject {
   const Package& package;
   gen::Robot robot;
   std::vector<State> states;
-  std::unique_ptr<GeneratedCode> generated, snapped;
+  std::unique_ptr<GeneratedCode> generated, snapped, unrolled;
   std::unique_ptr<RuntimeCode> runtime;
   std::unique_ptr<MujocoCode> mujoco;
   std::unique_ptr<KdlCode> kdl;
@@ -353,17 +353,19 @@ void add(const Package& p, Implementation i, Code* code) {
 
 std::unique_ptr<Subject> make_subject(const Package& p) {
   auto s = std::unique_ptr<Subject>(
-      new Subject{p, gen::load_robot(p.input, load_options(p)), {}, {}, {}, {}, {}, {}});
+      new Subject{p, gen::load_robot(p.input, load_options(p)), {}, {}, {}, {}, {}, {}, {}});
   Random rng(seed);
   for (int k = 0; k < state_count; ++k)
     s->states.push_back(numerics::random_state(s->robot.model, rng));
   s->generated = std::make_unique<GeneratedCode>(p.generated, s->robot.model, s->states);
   s->snapped = std::make_unique<GeneratedCode>(p.snapped, s->robot.model, s->states);
+  s->unrolled = std::make_unique<GeneratedCode>(p.unrolled, s->robot.model, s->states);
   s->runtime = std::make_unique<RuntimeCode>(s->robot.model, s->states);
   s->mujoco = std::make_unique<MujocoCode>(s->robot, p.urdf, p.floating_base, s->states);
   s->kdl = std::make_unique<KdlCode>(s->robot, p.urdf, p.floating_base);
   add(p, Generated, s->generated.get());
   add(p, Snapped, s->snapped.get());
+  add(p, Unrolled, s->unrolled.get());
   add(p, Runtime, s->runtime.get());
   add(p, Mujoco, s->mujoco.get());
   add(p, Kdl, s->kdl.get());
@@ -449,15 +451,17 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
      << ", orocos-KDL 1.5.1; " << date
      << ". Ratios are times over the generated code's (KDL / runtime: KDL's time over the "
         "runtime's). snapped: the code of `dyngen --snap 1e-9`, with its ratios over the same "
-        "others. ops: operations per call of the generated code, the snapped code and the "
+        "others. unrolled: the code of `dyngen --structure unrolled` (the same operations, every "
+        "link's code in place; generated is --structure shared, the default). "
+        "ops: operations per call of the generated code, the snapped code and the "
         "runtime (dyngen's count). KDL: `chain` solvers on serial robots, `tree` (RNEA only) "
         "otherwise. bench/README.md says what each column calls.\n\n"
-     << "| robot | base | nv | algorithm | generated | snapped | runtime | MuJoCo | KDL "
+     << "| robot | base | nv | algorithm | generated | snapped | unrolled | runtime | MuJoCo | KDL "
         "| KDL solver | runtime / generated | MuJoCo / generated | KDL / generated "
-        "| runtime / snapped | MuJoCo / snapped | KDL / snapped | KDL / runtime "
-        "| ops generated | ops snapped | ops runtime |\n"
-     << "|---|---|---:|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"
-        "---:|---:|\n";
+        "| runtime / snapped | MuJoCo / snapped | KDL / snapped | runtime / unrolled "
+        "| unrolled / generated | KDL / runtime | ops generated | ops snapped | ops runtime |\n"
+     << "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|"
+        "---:|---:|---:|---:|---:|\n";
   for (const auto& s : subjects) {
     const Package& p = s->package;
     const OperationCounts ops = operation_counts(p.header);
@@ -465,16 +469,17 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
     const std::string robot =
         p.links ? std::string(p.robot) + " " + std::to_string(p.links) : std::string(p.robot);
     for (const Algorithm a : algorithms) {
-      const auto g = time(p, a, Generated), sn = time(p, a, Snapped), r = time(p, a, Runtime),
-                 m = time(p, a, Mujoco), k = time(p, a, Kdl);
-      if (!g && !sn && !r && !m && !k) continue;  // filtered out
+      const auto g = time(p, a, Generated), sn = time(p, a, Snapped), sh = time(p, a, Unrolled),
+                 r = time(p, a, Runtime), m = time(p, a, Mujoco), k = time(p, a, Kdl);
+      if (!g && !sn && !sh && !r && !m && !k) continue;  // filtered out
       md << "| " << robot << " | " << p.base << " | " << s->robot.model.nv << " | "
          << gen::algorithm_name(a) << " | " << format_ns(g) << " | " << format_ns(sn) << " | "
-         << format_ns(r) << " | " << format_ns(m) << " | " << format_ns(k) << " | "
-         << (s->kdl->is_chain() ? "chain" : "tree") << " | " << format_ratio(r, g) << " | "
-         << format_ratio(m, g) << " | " << format_ratio(k, g) << " | " << format_ratio(r, sn)
-         << " | " << format_ratio(m, sn) << " | " << format_ratio(k, sn) << " | "
-         << format_ratio(k, r) << " | " << ops.generated[static_cast<int>(a)] << " | "
+         << format_ns(sh) << " | " << format_ns(r) << " | " << format_ns(m) << " | "
+         << format_ns(k) << " | " << (s->kdl->is_chain() ? "chain" : "tree") << " | "
+         << format_ratio(r, g) << " | " << format_ratio(m, g) << " | " << format_ratio(k, g)
+         << " | " << format_ratio(r, sn) << " | " << format_ratio(m, sn) << " | "
+         << format_ratio(k, sn) << " | " << format_ratio(r, sh) << " | " << format_ratio(sh, g)
+         << " | " << format_ratio(k, r) << " | " << ops.generated[static_cast<int>(a)] << " | "
          << (p.snapped_header ? std::to_string(snapped_ops.generated[static_cast<int>(a)]) : "-") << " | "
          << ops.runtime[static_cast<int>(a)] << " |\n";
     }
@@ -483,12 +488,13 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
   // gnuplot: time (top row) and operation count (bottom row) against links, one panel per
   // algorithm; solid lines the planar chains, dashed the spatial ones.
   std::ofstream gp(dir + "/benchmarks.gp");
-  const Implementation plotted[] = {Generated, Runtime, Mujoco, Kdl};  // the chains have no snap
+  const Implementation plotted[] = {Generated, Unrolled, Runtime, Mujoco, Kdl};  // chains: no snap
+  const int n_plotted = std::size(plotted);
   const char* kinds[] = {"planar_chain", "spatial_chain"};
   for (const char* kind : kinds)
     for (const Algorithm a : algorithms) {
       gp << "$" << kind << "_" << gen::algorithm_name(a)
-         << " << EOD\n# links generated runtime mujoco kdl ops_generated ops_runtime\n";
+         << " << EOD\n# links generated unrolled runtime mujoco kdl ops_generated ops_runtime\n";
       for (const auto& s : subjects) {
         const Package& p = s->package;
         if (!p.links || std::string(p.robot) != kind) continue;
@@ -509,10 +515,10 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
         "set key top left font ',9'\nset xlabel 'links'\n"
         "set multiplot layout 2,3 title 'dyngen benchmarks: chains (solid: planar, dashed: "
         "spatial)'\n";
-  const char* colors[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a"};
+  const char* colors[] = {"#1b9e77", "#66a61e", "#d95f02", "#7570b3", "#e7298a"};
   for (const Algorithm a : algorithms) {
     gp << "set title '" << gen::algorithm_name(a) << ": time per call'\nset ylabel 'ns'\nplot ";
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < n_plotted; ++i)
       for (int kind = 0; kind < 2; ++kind)
         gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << gen::algorithm_name(a)
            << " using 1:" << i + 2 << " with linespoints lc rgb '" << colors[i] << "' dt "
@@ -526,8 +532,9 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
     for (int i = 0; i < 2; ++i)
       for (int kind = 0; kind < 2; ++kind)
         gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << gen::algorithm_name(a)
-           << " using 1:" << i + 6 << " with linespoints lc rgb '" << colors[i] << "' dt "
-           << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[plotted[i]]
+           << " using 1:" << i + 2 + n_plotted << " with linespoints lc rgb '"
+           << colors[i == 0 ? 0 : 2] << "' dt " << kind + 1 << " pt 7 ps 0.5 title '"
+           << (i == 0 ? "generated" : "runtime")
            << (kind ? " spatial" : " planar") << "'";
     gp << "\n";
   }

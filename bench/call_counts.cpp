@@ -3,8 +3,9 @@
 //
 //   dyngen_call_counts --list
 //       the packages of packages.cpp (the code dyngen_bench times), one per line: the name, then
-//       the implementations it has: generated, snapped (the code of --snap 1e-9; robots), runtime,
-//       hand-written (planar_reference.hpp; planar chains)
+//       the implementations it has: generated, snapped (the code of --snap 1e-9; robots),
+//       unrolled (the code of --structure unrolled), runtime, hand-written (planar_reference.hpp;
+//       planar chains)
 //   dyngen_call_counts PACKAGE IMPLEMENTATION ALGORITHM CALLS
 //       CALLS calls of one function on 16 seeded random states, each through
 //       dyngen_measured_call, the one function whose instructions callgrind collects
@@ -60,7 +61,8 @@ using gen::Algorithm;
 
 constexpr int state_count = 16;
 constexpr std::uint64_t seed = 20261121;
-constexpr const char* implementations[] = {"generated", "snapped", "runtime", "hand-written"};
+constexpr const char* implementations[] = {"generated", "snapped", "unrolled", "runtime",
+                                           "hand-written"};
 
 std::optional<Algorithm> algorithm_named(const std::string& name) {
   for (const Algorithm a : {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba})
@@ -79,7 +81,8 @@ bool is_planar_chain(const Package& p) { return std::string(p.robot) == "planar_
 bool has(const Package& p, const std::string& implementation) {
   if (implementation == "snapped") return p.snapped.rnea != nullptr;
   if (implementation == "hand-written") return is_planar_chain(p);
-  return implementation == "generated" || implementation == "runtime";
+  return implementation == "generated" || implementation == "unrolled" ||
+         implementation == "runtime";
 }
 
 gen::Robot load(const Package& p, bool snapped) {
@@ -142,12 +145,15 @@ int measure(const std::string& package, const std::string& implementation, Algor
   for (int k = 0; k < state_count; ++k) states.push_back(numerics::random_state(model, rng));
   std::vector<double> out(model.nv * model.nv);
 
-  Generated generated{implementation == "snapped" ? p.snapped : p.generated, a};
+  Generated generated{implementation == "snapped"  ? p.snapped
+                      : implementation == "unrolled" ? p.unrolled
+                                                   : p.generated,
+                      a};
   Runtime runtime{model, Workspace<double>(model), a};
   std::optional<HandWritten> hand_written;
   Call call = call_nothing;
   void* target = nullptr;
-  if (implementation == "generated" || implementation == "snapped") {
+  if (implementation == "generated" || implementation == "snapped" || implementation == "unrolled") {
     call = call_generated, target = &generated;
   } else if (implementation == "runtime") {
     call = call_runtime, target = &runtime;
@@ -198,7 +204,8 @@ int report(const std::string& counts_file, const std::filesystem::path& output) 
       "(bench/README.md): each function called on 16 seeded random states under `valgrind "
       "--tool=callgrind`, with collection only inside the call. *generated*: the code dyngen "
       "emits (dyngen_bench's packages, built at -O3 with -ffp-contract=off); *snapped*: the same "
-      "with `--snap 1e-9`; *runtime*: `dyngen::rnea`, `crba`, `aba` on `Model<double>`; "
+      "with `--snap 1e-9`; *unrolled*: the code of `--structure unrolled` (the same operations as "
+      "*generated*, which is `--structure shared`); *runtime*: `dyngen::rnea`, `crba`, `aba` on `Model<double>`; "
       "*hand-written*: bench/planar_reference.hpp (planar chains). *ops*: operations per call "
       "(add, mul, div, neg, sin and cos, as dyngen_work_counts counts them); *Ir/op*: "
       "instructions per operation, loads, stores, calls and sin/cos included.";
@@ -208,10 +215,10 @@ int report(const std::string& counts_file, const std::filesystem::path& output) 
         "empty call, measured the same way).",
         *overhead);
   md +=
-      "\n\n| package | algorithm | Ir: generated | snapped | runtime | hand-written | "
-      "runtime / generated | hand-written / generated | ops: generated | runtime | hand-written | "
-      "Ir/op: generated | runtime | hand-written |\n"
-      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      "\n\n| package | algorithm | Ir: generated | snapped | unrolled | runtime | hand-written | "
+      "runtime / generated | unrolled / generated | hand-written / generated | ops: generated | "
+      "runtime | hand-written | Ir/op: generated | runtime | hand-written |\n"
+      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   nlohmann::json json = {
       {"description", "instructions per call (callgrind Ir) and operations per call"},
       {"harness_ir_per_call", overhead ? nlohmann::json(*overhead) : nullptr},
@@ -230,9 +237,9 @@ int report(const std::string& counts_file, const std::filesystem::path& output) 
                             : std::string("-");
       };
       std::string row = fmt::format("| {} | {} |", p.name, name);
-      for (const char* x : {"generated", "snapped", "runtime", "hand-written"})
+      for (const char* x : {"generated", "snapped", "unrolled", "runtime", "hand-written"})
         row += fmt::format(" {} |", cell(per_call, x, "{:.0f}"));
-      for (const char* x : {"runtime", "hand-written"})
+      for (const char* x : {"runtime", "unrolled", "hand-written"})
         row += fmt::format(" {} |", cell(per_call, x, "{:.2f}", per_call.at("generated")));
       for (const char* x : {"generated", "runtime", "hand-written"})
         row += ops.count(x) ? fmt::format(" {} |", ops.at(x)) : " - |";
@@ -268,7 +275,7 @@ int run(int argc, char** argv) {
     return measure(args[0], args[1], *algorithm_named(args[2]), std::atol(args[3].c_str()));
   std::fprintf(stderr,
                "usage: dyngen_call_counts --list\n"
-               "       dyngen_call_counts PACKAGE generated|snapped|runtime|hand-written|none "
+               "       dyngen_call_counts PACKAGE generated|snapped|unrolled|runtime|hand-written|none "
                "rnea|crba|aba CALLS\n"
                "       dyngen_call_counts --report COUNTS OUTPUT_DIR\n");
   return 2;

@@ -28,6 +28,7 @@ struct Package {
   bool floating_base, mimic_independent, lock_massless;  // dyngen's load options
   Functions generated;
   Functions snapped;  // the code dyngen --snap 1e-9 writes (null for the chains)
+  Functions unrolled;  // the code dyngen --structure unrolled writes
 };
 
 /// Every package, in the order of bench/CMakeLists.txt.

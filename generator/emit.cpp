@@ -104,11 +104,87 @@ OpCounts count_ops(const Program<T>& program, bool live_only) {
   return c;
 }
 
+const char* structure_name(Structure s) {
+  return s == Structure::Shared ? "shared" : "unrolled";
+}
+
+namespace {
+
+/// A maximal run of operations that the trace recorded for one body and pass.
+struct Section {
+  int body;
+  Pass pass;
+  std::vector<int> ops;        // node ids, in the trace's order
+  std::vector<int> inputs;     // values computed elsewhere that ops read, by first use
+  std::vector<int> constants;  // the constants that ops read, by first use
+  std::vector<int> outputs;    // ops that other sections or the outputs read
+  std::string shape;           // the operations with operands renamed; equal shape, equal code
+  int group = -1;              // index of its shared function, -1 when emitted in place
+  int instance = 0;            // its row in the shared function's constant table
+  int w = 0;                   // where its outputs start in w
+};
+
 template <class T>
-std::string emit_body(const Program<T>& program, const Model<double>& model) {
+std::vector<Section> sections_of(const Program<T>& program, const std::vector<bool>& is_op) {
+  const auto& nodes = program.graph.nodes;
+  std::vector<Section> sections;
+  std::vector<int> section_of(nodes.size(), -1), local(nodes.size(), -1);
+  for (std::size_t id = 0; id < nodes.size(); ++id) {
+    if (!is_op[id]) continue;
+    const Node<T>& n = nodes[id];
+    if (sections.empty() || sections.back().body != n.body || sections.back().pass != n.pass)
+      sections.push_back({n.body, n.pass, {}, {}, {}, {}, {}});
+    section_of[id] = static_cast<int>(sections.size()) - 1;
+    local[id] = static_cast<int>(sections.back().ops.size());
+    sections.back().ops.push_back(static_cast<int>(id));
+  }
+  std::vector<bool> read_outside(nodes.size(), false);
+  for (const int id : program.outputs) read_outside[id] = true;
+  for (Section& s : sections) {
+    const int self = section_of[s.ops.front()];
+    std::map<int, int> slot, constant_slot;
+    for (const int id : s.ops) {
+      const Node<T>& n = nodes[id];
+      s.shape += fmt::format("{}", static_cast<int>(n.op));
+      for (const int x : {n.a, n.b}) {
+        if (x < 0) continue;
+        if (nodes[x].op == Op::Const) {
+          const auto [it, added] = constant_slot.emplace(x, static_cast<int>(s.constants.size()));
+          if (added) s.constants.push_back(x);
+          s.shape += fmt::format(" k{}", it->second);
+        } else if (section_of[x] == self) {
+          s.shape += fmt::format(" t{}", local[x]);
+        } else {
+          if (section_of[x] >= 0) read_outside[x] = true;
+          const auto [it, added] = slot.emplace(x, static_cast<int>(s.inputs.size()));
+          if (added) s.inputs.push_back(x);
+          s.shape += fmt::format(" x{}", it->second);
+        }
+      }
+      s.shape += ";";
+    }
+  }
+  for (Section& s : sections) {
+    for (const int id : s.ops)
+      if (read_outside[id]) s.outputs.push_back(id);
+    s.shape += "->";
+    for (const int id : s.outputs) s.shape += fmt::format(" t{}", local[id]);
+  }
+  return sections;
+}
+
+std::string body_label(const Model<double>& model, int body) {
+  return fmt::format("'{}' ({})", model.body_name[body], body);
+}
+
+}  // namespace
+
+template <class T>
+EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure) {
   const auto& nodes = program.graph.nodes;
   const std::vector<bool> live = live_nodes(program);
   const char* type = std::is_same_v<T, float> ? "float" : "double";
+  const std::string prefix = algorithm_name(program.algorithm);
 
   // sin and cos of joint angles come precomputed in trig (joint_trig), so that one call of
   // dyngen::sincos serves every function that takes the same q
@@ -119,8 +195,46 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
       throw std::logic_error("internal error: sin or cos of something other than a joint angle");
     return true;
   };
+  std::vector<bool> is_op(nodes.size(), false);
+  for (std::size_t id = 0; id < nodes.size(); ++id)
+    is_op[id] = live[id] && nodes[id].op != Op::Const && nodes[id].op != Op::Input &&
+                !is_trig(nodes[id]);
+
+  // Shared structure: sections of the same shape (a right leg's and a left leg's, a chain's
+  // links) run one function over a table of their constants; the operations and their order
+  // are those of the unrolled code, so the bits are too.
+  std::vector<Section> sections = sections_of(program, is_op);
+  std::vector<std::vector<int>> groups;
+  if (structure == Structure::Shared) {
+    std::map<std::string, std::vector<int>> by_shape;
+    for (std::size_t s = 0; s < sections.size(); ++s)
+      if (sections[s].body >= 0) by_shape[sections[s].shape].push_back(static_cast<int>(s));
+    std::map<int, std::vector<int>> by_first;  // numbered in the order the body calls them
+    for (auto& [shape, members] : by_shape)
+      if (members.size() > 1 && sections[members.front()].ops.size() >= min_shared_operations)
+        by_first[members.front()] = members;
+    for (auto& [first, members] : by_first) {
+      for (std::size_t k = 0; k < members.size(); ++k) {
+        sections[members[k]].group = static_cast<int>(groups.size());
+        sections[members[k]].instance = static_cast<int>(k);
+      }
+      groups.push_back(members);
+    }
+  }
+  EmittedCode code;
+  code.sections = static_cast<int>(sections.size());
+  code.shared_functions = static_cast<int>(groups.size());
+  int w_size = 0;
   std::vector<std::string> name(nodes.size());
-  std::vector<int> per_body(model.nbodies + 1, 0);
+  for (Section& s : sections) {
+    if (s.group < 0) continue;
+    ++code.shared_sections;
+    s.w = w_size;
+    for (std::size_t k = 0; k < s.outputs.size(); ++k)
+      name[s.outputs[k]] = fmt::format("w[{}]", w_size + static_cast<int>(k));
+    w_size += static_cast<int>(s.outputs.size());
+  }
+
   auto operand = [&](int id) -> std::string {
     const Node<T>& n = nodes[id];
     if (n.op == Op::Const) return literal(n.value);
@@ -133,6 +247,57 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
                          program.graph.inputs[nodes[n.a].input].index);
     return name[id];
   };
+  auto expression = [&](const Node<T>& n, auto&& arg) {
+    switch (n.op) {
+      case Op::Neg: return "-" + arg(n.a);
+      case Op::Add: return arg(n.a) + " + " + arg(n.b);
+      case Op::Sub: return arg(n.a) + " - " + arg(n.b);
+      case Op::Mul: return arg(n.a) + " * " + arg(n.b);
+      case Op::Div: return arg(n.a) + " / " + arg(n.b);
+      default: return std::string();
+    }
+  };
+
+  // the shared functions, each with its constant table
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const Section& first = sections[groups[g].front()];
+    const std::string fn = fmt::format("{}_shape_{}", prefix, g);
+    std::string users;
+    for (std::size_t k = 0; k < groups[g].size() && k < 6; ++k)
+      users += (k ? ", " : "") + body_label(model, sections[groups[g][k]].body);
+    if (groups[g].size() > 6) users += fmt::format(" and {} more", groups[g].size() - 6);
+    code.helpers += fmt::format(
+        "// {}: {} operations, {} inputs, {} outputs; {}, {} sections: {}\n", fn,
+        first.ops.size(), first.inputs.size(), first.outputs.size(), pass_name(first.pass),
+        groups[g].size(), users);
+    const std::size_t nk = first.constants.size();
+    if (nk > 0) {
+      code.helpers += fmt::format("constexpr {} {}_k[{}][{}] = {{\n", type, fn, groups[g].size(), nk);
+      for (const int member : groups[g]) {
+        std::string row;
+        for (const int c : sections[member].constants)
+          row += (row.empty() ? "" : ", ") + literal(nodes[c].value);
+        code.helpers += fmt::format("    {{{}}},\n", row);
+      }
+      code.helpers += "};\n";
+    }
+    code.helpers += fmt::format("static void {}({}const {} x[{}], {} y[{}]) noexcept\n{{\n", fn,
+                                nk > 0 ? fmt::format("const {} k[{}], ", type, nk) : "", type,
+                                first.inputs.size(), type, first.outputs.size());
+    std::map<int, std::string> local;
+    for (std::size_t k = 0; k < first.inputs.size(); ++k)
+      local[first.inputs[k]] = fmt::format("x[{}]", k);
+    for (std::size_t k = 0; k < first.constants.size(); ++k)
+      local[first.constants[k]] = fmt::format("k[{}]", k);
+    for (std::size_t k = 0; k < first.ops.size(); ++k) {
+      code.helpers += fmt::format("    const {} t{} = {};\n", type, k,
+                                  expression(nodes[first.ops[k]], [&](int id) { return local.at(id); }));
+      local[first.ops[k]] = fmt::format("t{}", k);
+    }
+    for (std::size_t k = 0; k < first.outputs.size(); ++k)
+      code.helpers += fmt::format("    y[{}] = {};\n", k, local.at(first.outputs[k]));
+    code.helpers += "}\n\n";
+  }
 
   // the arrays that the emitted statements and output stores read
   std::map<std::string, bool> used;
@@ -144,14 +309,13 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
       used["trig"] = true;
   };
   for (std::size_t id = 0; id < nodes.size(); ++id) {
-    const Node<T>& n = nodes[id];
-    if (!live[id] || n.op == Op::Const || n.op == Op::Input || is_trig(n)) continue;
-    if (n.a >= 0) use(n.a);
-    if (n.b >= 0) use(n.b);
+    if (!is_op[id]) continue;
+    if (nodes[id].a >= 0) use(nodes[id].a);
+    if (nodes[id].b >= 0) use(nodes[id].b);
   }
   for (const int id : program.outputs) use(id);
 
-  std::string out;
+  std::string& out = code.body;
   std::vector<std::string> arrays = program.input_arrays;
   const auto q = std::find(arrays.begin(), arrays.end(), "q");
   arrays.insert(q == arrays.end() ? q : q + 1, "trig");
@@ -160,38 +324,34 @@ std::string emit_body(const Program<T>& program, const Model<double>& model) {
       out += fmt::format("    static_cast<void>({});  // {}\n\n", array,
                          array == "q" && used["trig"] ? "read only through trig"
                                                       : "no output of this robot depends on it");
-  int section_body = -2;
-  Pass section_pass = Pass::Forward;
-  for (std::size_t id = 0; id < nodes.size(); ++id) {
-    const Node<T>& n = nodes[id];
-    if (!live[id] || n.op == Op::Const || n.op == Op::Input || is_trig(n)) continue;
-    if (n.body != section_body || n.pass != section_pass) {
-      if (section_body != -2) out += "\n";
-      out += section_header<T>(model, n.body, n.pass);
-      section_body = n.body;
-      section_pass = n.pass;
+  if (w_size > 0)
+    out += fmt::format("    {} w[{}];  // the outputs of the sections that shared functions compute\n\n",
+                       type, w_size);
+  std::vector<int> per_body(model.nbodies + 1, 0);
+  for (const Section& s : sections) {
+    out += section_header<T>(model, s.body, s.pass);
+    if (s.group >= 0) {
+      std::string x;
+      for (const int id : s.inputs) x += (x.empty() ? "" : ", ") + operand(id);
+      const std::string k = s.constants.empty()
+                                ? std::string()
+                                : fmt::format("{}_shape_{}_k[{}], ", prefix, s.group, s.instance);
+      out += fmt::format("    {{\n        const {} x[] = {{{}}};\n        {}_shape_{}({}x, w + {});\n    }}\n\n",
+                         type, x, prefix, s.group, k, s.w);
+      continue;
     }
-    const std::string prefix = n.body < 0 ? std::string("t") : sanitize(model.body_name[n.body]);
-    name[id] = fmt::format("{}_{}", prefix, per_body[n.body + 1]++);
-    std::string expr;
-    switch (n.op) {
-      case Op::Neg: expr = "-" + operand(n.a); break;
-      case Op::Add: expr = operand(n.a) + " + " + operand(n.b); break;
-      case Op::Sub: expr = operand(n.a) + " - " + operand(n.b); break;
-      case Op::Mul: expr = operand(n.a) + " * " + operand(n.b); break;
-      case Op::Div: expr = operand(n.a) + " / " + operand(n.b); break;
-      case Op::Sin:
-      case Op::Cos:
-      case Op::Const:
-      case Op::Input: break;
+    for (const int id : s.ops) {
+      const Node<T>& n = nodes[id];
+      const std::string body = n.body < 0 ? std::string("t") : sanitize(model.body_name[n.body]);
+      name[id] = fmt::format("{}_{}", body, per_body[n.body + 1]++);
+      out += fmt::format("    const {} {} = {};\n", type, name[id], expression(n, operand));
     }
-    out += fmt::format("    const {} {} = {};\n", type, name[id], expr);
+    out += "\n";
   }
-  if (section_body != -2) out += "\n";
   out += "    // ---- outputs\n";
   for (int k = 0; k < program.output_size; ++k)
     out += fmt::format("    {}[{}] = {};\n", program.output_array, k, operand(program.outputs[k]));
-  return out;
+  return code;
 }
 
 std::string emit_joint_trig(const Model<double>& model) {
@@ -222,7 +382,7 @@ std::string emit_joint_trig(const Model<double>& model) {
 
 template OpCounts count_ops<double>(const Program<double>&, bool);
 template OpCounts count_ops<float>(const Program<float>&, bool);
-template std::string emit_body<double>(const Program<double>&, const Model<double>&);
-template std::string emit_body<float>(const Program<float>&, const Model<double>&);
+template EmittedCode emit_code<double>(const Program<double>&, const Model<double>&, Structure);
+template EmittedCode emit_code<float>(const Program<float>&, const Model<double>&, Structure);
 
 }  // namespace dyngen::gen

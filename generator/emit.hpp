@@ -1,7 +1,9 @@
 // Schedules a traced program and prints it as C++: live nodes in creation order (the
-// algorithm's order), one operation per statement, grouped and labelled by body and pass.
+// algorithm's order), one operation per statement, grouped and labelled by body and pass,
+// either in place or in functions shared by sections of the same shape.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "dyngen/model.hpp"
@@ -28,9 +30,32 @@ OpCounts count_ops(const Program<T>& program, bool live_only = true);
 std::string literal(double value);
 std::string literal(float value);
 
-/// The body of the emitted function (statements and output stores), indented.
+/// How a function's code is laid out. Unrolled: every link's sections in place, one statement
+/// per operation. Shared: sections of the same shape (the same operations on other
+/// constants, as a left and a right leg, or a chain's links) call one function with a table of
+/// their constants, so the code grows with the number of shapes rather than links. Both
+/// perform the same operations in the same order.
+enum class Structure { Unrolled, Shared };
+
+const char* structure_name(Structure s);
+
+/// Sections smaller than this stay in place under Structure::Shared: gathering a section's
+/// inputs and calling costs about as much as a few dozen operations (docs/performance.md,
+/// "Code structure").
+inline constexpr std::size_t min_shared_operations = 40;
+
+struct EmittedCode {
+  std::string helpers;  // namespace-scope definitions the body calls (the shared functions)
+  std::string body;     // the function's statements and output stores, indented
+  int sections = 0;          // runs of one body's operations in one pass
+  int shared_sections = 0;   // of them, computed by a shared function
+  int shared_functions = 0;
+};
+
+/// The code of one traced function.
 template <class T>
-std::string emit_body(const Program<T>& program, const Model<double>& model);
+EmittedCode emit_code(const Program<T>& program, const Model<double>& model,
+                      Structure structure = Structure::Unrolled);
 
 /// The body of joint_trig(q, trig): dyngen::sincos of every revolute joint's angle.
 std::string emit_joint_trig(const Model<double>& model);

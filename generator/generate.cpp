@@ -77,9 +77,13 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
       robot.locked.empty() ? ""
                            : fmt::format(" ({} locked)", robot.locked.size()),
       options.options_text.empty() ? "" : " " + options.options_text);
-  for (const FunctionCounts& c : counts)
+  for (const FunctionCounts& c : counts) {
     text += fmt::format("\n  {:<4}  generated: {}\n        runtime:   {}", algorithm_name(c.algorithm),
                         to_string(c.generated), to_string(c.runtime));
+    if (options.structure == Structure::Shared)
+      text += fmt::format("\n        {} of {} link sections in {} shared functions",
+                          c.shared_sections, c.sections, c.shared_functions);
+  }
   if (robot.snapped) text += fmt::format("\n{}", snap_text(*robot.snapped));
   return fmt::format("{}\n{}", text, conditioning);
 }
@@ -133,12 +137,15 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     const Program<T> program = trace<T>(algorithm, model, true);
     const OpCounts generated = count_ops(program);
     const OpCounts runtime = count_ops(trace<T>(algorithm, model, false), false);
-    result.counts.push_back({algorithm, generated, runtime});
+    const EmittedCode code = emit_code(program, model, options.structure);
+    result.counts.push_back({algorithm, generated, runtime, code.sections, code.shared_sections,
+                             code.shared_functions});
     const std::string a = algorithm_name(algorithm);
     declarations += fill(a + ".hpp.in", {{"scalar", scalar}}) + "\n";
+    if (!code.helpers.empty()) definitions += "\n" + code.helpers;
     definitions += fill(a + ".cpp.in", {{"scalar", scalar},
                                         {"counts", to_string(generated)},
-                                        {"body", emit_body(program, model)}});
+                                        {"body", code.body}});
     cases += fill(a + "_check.cpp.in", {{"namespace", ns}});
   }
   if (!declarations.empty()) declarations.pop_back();

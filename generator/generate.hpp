@@ -17,6 +17,7 @@ struct GenerateOptions {
   std::string name;                     // file prefix and C++ namespace
   std::vector<Algorithm> algorithms{Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba};
   bool single_precision = false;        // float instead of double
+  Structure structure = Structure::Shared;
   std::string options_text;             // the options as given, for the banner
   int conditioning_samples = 16;        // sampled states of the conditioning estimate
 };
@@ -25,6 +26,7 @@ struct FunctionCounts {
   Algorithm algorithm;
   OpCounts generated;  // in the emitted function
   OpCounts runtime;    // what runtime<T> performs for the same call
+  int sections = 0, shared_sections = 0, shared_functions = 0;  // EmittedCode's
 };
 
 struct GeneratedFile {

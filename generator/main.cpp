@@ -214,7 +214,8 @@ int main(int argc, char** argv) {
                "(dyngen eval --help)\n"
                "dyngen report ROBOT -o DIR: error against run time of every variant "
                "(dyngen report --help)"};
-  std::string input, output, algorithms = "rnea,crba,aba", scalar = "double", name;
+  std::string input, output, algorithms = "rnea,crba,aba", scalar = "double", name,
+      structure = "shared";
   ModelFlags flags;
   bool quiet = false;
   app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
@@ -225,6 +226,12 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"double", "float"}))
       ->capture_default_str();
   app.add_option("--name", name, "C++ namespace and file prefix (default: the robot's name)");
+  app.add_option("--structure", structure,
+                 "shared: sections of links whose code differs only in constants share one "
+                 "function over a table of them (smaller code, the same operations and bits); "
+                 "unrolled: every link's code in place")
+      ->check(CLI::IsMember({"unrolled", "shared"}))
+      ->capture_default_str();
   flags.add_to(app);
   app.add_flag("-q,--quiet", quiet, "print errors and warnings only");
   app.set_version_flag("--version", std::string("dyngen ") + version);
@@ -235,6 +242,7 @@ int main(int argc, char** argv) {
     GenerateOptions options;
     options.algorithms = parse_algorithms(algorithms);
     options.single_precision = scalar == "float";
+    options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
 
     if (!quiet) fmt::print("dyngen {}: reading {}\n", version, input);
     const Robot robot = load_robot(input, load);
@@ -245,8 +253,9 @@ int main(int argc, char** argv) {
     for (const Algorithm a : options.algorithms)
       algorithm_list += (algorithm_list.empty() ? "" : ",") + std::string(algorithm_name(a));
     const Vec3<double>& g = robot.model.gravity;
-    options.options_text = fmt::format("--algorithms {} --scalar {} --gravity {},{},{} --name {}",
-                                       algorithm_list, scalar, g.x, g.y, g.z, options.name);
+    options.options_text =
+        fmt::format("--algorithms {} --scalar {} --structure {} --gravity {},{},{} --name {}",
+                    algorithm_list, scalar, structure, g.x, g.y, g.z, options.name);
     options.options_text += flags.text();
 
     if (!quiet) {

@@ -4,7 +4,7 @@
 # function of each package under valgrind --tool=callgrind and writes callgrind.md and
 # callgrind.json.
 #
-#   scripts/callgrind.sh                        every package: generated, snapped, runtime and
+#   scripts/callgrind.sh                        every package: generated, snapped, unrolled, runtime and
 #                                               hand-written code, into bench/results
 #   scripts/callgrind.sh '^(ur5|panda)' DIR     the packages whose names match an extended regex,
 #                                               into DIR

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <random>
 #include <regex>
 #include <set>
@@ -20,6 +21,7 @@
 #include "emit.hpp"
 #include "generate.hpp"
 #include "robot.hpp"
+#include "trace.hpp"
 
 namespace {
 
@@ -155,8 +157,9 @@ TEST_P(Emitted, SectionHeadersNameLinkJointTypeAndPass) {
   const std::string source = generated_source(GetParam());
   const std::regex header(
       R"(^    // ---- link '(\w+)' \((\d+)\) <- (base|'(\w+)' \((\d+)\)); joint '(\w+)': )"
-      R"((.+); (forward pass|backward pass|kinematics|composite inertia|velocity pass|)"
-      R"(articulated inertia pass|acceleration pass)$)");
+      R"((.+); (forward pass|backward pass|kinematics|composite inertia|)"
+      R"(a descendant's column of M carried up|velocity pass|articulated inertia pass|)"
+      R"(acceleration pass)$)");
   std::set<std::pair<int, std::string>> sections;
   for (const std::string& line : lines_of(source)) {
     if (line.find("// ----") == std::string::npos || line == "    // ---- outputs") continue;
@@ -286,6 +289,52 @@ TEST_P(Emitted, SinAndCosOnlyInJointTrigOncePerRevoluteAngle) {
   for (int i = 0; i < model.nbodies; ++i)
     EXPECT_EQ(calls[model.q_index[i]], is_revolute(model.joint_type[i]) ? 1 : 0)
         << model.joint_name[i];
+}
+
+// ---- the shared structure
+
+/// How often each operation statement runs in one call of code: the body's own statements,
+/// plus each shared function's statements once per call of it.
+long statements_run(const EmittedCode& code, const std::string& algorithm) {
+  const std::regex statement(R"(^    const double \w+ = .+;$)");
+  const std::regex function("^static void (" + algorithm + R"(_shape_\d+)\()");
+  std::map<std::string, long> per_function;
+  std::string current;
+  for (const std::string& line : lines_of(code.helpers)) {
+    std::smatch m;
+    if (std::regex_search(line, m, function)) current = m[1];
+    if (!current.empty() && std::regex_match(line, statement)) ++per_function[current];
+  }
+  long run = 0;
+  for (const std::string& line : lines_of(code.body)) {
+    if (std::regex_match(line, statement)) ++run;
+    for (const auto& [name, count] : per_function)
+      if (line.find(name + "(") != std::string::npos) run += count;
+  }
+  return run;
+}
+
+TEST(SharedStructure, RunsEveryOperationOfTheUnrolledCodeOnce) {
+  for (const bool floating : {false, true}) {
+    LoadOptions load;
+    load.floating_base = floating;
+    const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", load);
+    for (const Algorithm a : {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba}) {
+      const Program<double> program = trace<double>(a, robot.model);
+      const EmittedCode unrolled = emit_code(program, robot.model, Structure::Unrolled);
+      const EmittedCode shared = emit_code(program, robot.model, Structure::Shared);
+      const OpCounts ops = count_ops(program);
+      const std::string what = std::string(algorithm_name(a)) + (floating ? " floating" : "");
+      EXPECT_TRUE(unrolled.helpers.empty()) << what;
+      EXPECT_EQ(unrolled.shared_sections, 0) << what;
+      EXPECT_EQ(statements_run(unrolled, algorithm_name(a)), ops.total() - ops.sin - ops.cos) << what;
+      // four legs of the same build: their sections share code
+      EXPECT_GT(shared.shared_functions, 0) << what;
+      EXPECT_GE(shared.shared_sections, 2 * shared.shared_functions) << what;
+      EXPECT_EQ(statements_run(shared, algorithm_name(a)), ops.total() - ops.sin - ops.cos) << what;
+      EXPECT_LT(shared.body.size() + shared.helpers.size(), unrolled.body.size()) << what;
+    }
+  }
 }
 
 TEST(GeneratedPackage, CopiesTheRuntimeSinCosVerbatim) {

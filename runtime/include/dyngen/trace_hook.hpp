@@ -12,6 +12,7 @@ enum class Pass : std::uint8_t {
   Backward,            // RNEA: joint forces
   Kinematics,          // CRBA: joint transforms
   CompositeInertia,    // CRBA: composite inertias and mass-matrix entries
+  Column,              // CRBA: a descendant's column of M carried up to this body
   Velocity,            // ABA: velocities and bias forces
   ArticulatedInertia,  // ABA: articulated inertias
   Acceleration,        // ABA: joint accelerations
@@ -23,6 +24,7 @@ inline const char* pass_name(Pass p) {
     case Pass::Backward: return "backward pass";
     case Pass::Kinematics: return "kinematics";
     case Pass::CompositeInertia: return "composite inertia";
+    case Pass::Column: return "a descendant's column of M carried up";
     case Pass::Velocity: return "velocity pass";
     case Pass::ArticulatedInertia: return "articulated inertia pass";
     case Pass::Acceleration: return "acceleration pass";
