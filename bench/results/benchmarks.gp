@@ -1,50 +1,50 @@
 $planar_chain_rnea << EOD
-# links generated runtime mujoco kdl ops_generated ops_runtime
-2 20.595469 126.452832 486.295604 406.346854 59 535
-4 37.245220 271.727506 734.764323 675.215236 158 1199
-8 70.180831 560.738980 1389.496682 1264.187478 377 2527
-16 147.831343 1120.559818 2690.752932 2398.781515 794 5183
-32 292.874441 2254.535859 5103.996610 4902.117876 1649 10495
+# links generated unrolled runtime mujoco kdl ops_generated ops_runtime
+2 19.735536 18.824306 139.311663 490.997651 409.252666 59 535
+4 36.676086 36.559207 273.343623 762.276362 686.925577 158 1199
+8 85.001138 73.286997 547.313960 1482.662012 1263.598547 377 2527
+16 213.210272 144.054764 1104.157384 2933.098295 2370.553057 794 5183
+32 432.563683 302.457535 2216.119346 5369.693171 4737.361383 1649 10495
 EOD
 $planar_chain_crba << EOD
-# links generated runtime mujoco kdl ops_generated ops_runtime
-2 13.188407 96.690364 314.686737 465.048374 12 333
-4 28.444647 235.216263 555.518901 867.717017 53 998
-8 66.569096 606.552647 1052.167354 1787.182429 211 2892
-16 205.484176 1592.883138 2263.071608 3935.296231 813 8936
-32 1024.983944 4811.114361 5601.195177 10325.108952 3227 30048
+# links generated unrolled runtime mujoco kdl ops_generated ops_runtime
+2 13.747966 13.680385 96.334866 315.888701 467.798987 12 333
+4 30.803753 28.245310 223.929331 538.981874 857.232078 53 998
+8 65.886264 66.779653 591.448483 1040.197695 1783.748173 211 2892
+16 193.530787 197.037028 1575.024404 2177.317912 4086.770324 813 8936
+32 1014.105455 993.316103 4841.339086 5932.495944 10302.856367 3227 30048
 EOD
 $planar_chain_aba << EOD
-# links generated runtime mujoco kdl ops_generated ops_runtime
-2 25.812122 279.011052 514.588943 858.174615 84 1124
-4 64.139726 648.374296 893.793978 1637.035797 296 2878
-8 175.071449 1403.672936 1715.001586 3183.966192 743 6386
-16 380.970972 2887.064946 3925.217242 7477.354506 1620 13402
-32 851.890421 5962.170456 11426.717781 21697.094818 3375 27434
+# links generated unrolled runtime mujoco kdl ops_generated ops_runtime
+2 24.740369 26.017414 283.050539 570.060108 865.784373 84 1124
+4 70.742279 65.387130 647.508092 914.938012 1575.915311 296 2878
+8 198.272561 170.650748 1381.542287 1721.820308 3281.017779 743 6386
+16 469.632332 377.295621 2946.061639 3817.585444 8228.303102 1620 13402
+32 1036.184794 875.896198 5898.664335 10589.162156 21947.694358 3375 27434
 EOD
 $spatial_chain_rnea << EOD
-# links generated runtime mujoco kdl ops_generated ops_runtime
-2 42.776958 124.961722 484.816207 413.245147 221 535
-4 102.548011 267.630977 785.612259 701.703054 805 1199
-8 369.926190 555.940232 1382.820595 1312.282879 1954 2527
-16 856.362116 1138.184670 2692.218179 2499.555271 4252 5183
-32 1816.615982 2300.712481 5375.586633 4787.183614 8848 10495
+# links generated unrolled runtime mujoco kdl ops_generated ops_runtime
+2 42.102879 42.175993 124.386570 517.982120 405.816000 221 535
+4 104.853414 105.339963 268.871687 860.129226 719.886378 805 1199
+8 244.782990 369.872688 559.982508 1421.221305 1285.140895 1954 2527
+16 594.788852 842.654612 1121.945444 2690.109149 2556.547565 4252 5183
+32 1276.967452 1951.558188 2224.325411 5334.765406 4931.515255 8848 10495
 EOD
 $spatial_chain_crba << EOD
-# links generated runtime mujoco kdl ops_generated ops_runtime
-2 25.405498 95.644738 327.881539 461.262723 81 333
-4 63.567089 228.987998 541.969913 864.550063 420 998
-8 226.325019 586.625340 1067.917164 1822.279340 1835 2892
-16 1312.275707 1593.950573 2295.813961 3994.210583 6753 8936
-32 5027.906129 4845.474718 5641.866509 10600.521737 24941 30048
+# links generated unrolled runtime mujoco kdl ops_generated ops_runtime
+2 25.276529 26.310541 94.002932 313.960454 458.776419 81 333
+4 62.358113 62.036499 230.266363 545.251119 856.307037 420 998
+8 289.397340 231.161102 579.423557 1044.882457 1835.336380 1835 2892
+16 1413.488474 1351.359606 1537.140609 2526.913666 4368.524531 6753 8936
+32 5637.221550 4969.330481 4748.809138 5675.843903 10093.150723 24941 30048
 EOD
 $spatial_chain_aba << EOD
-# links generated runtime mujoco kdl ops_generated ops_runtime
-2 54.738268 290.667584 526.701326 844.160407 325 1124
-4 666.433393 648.060966 903.193855 1606.888400 1583 2878
-8 1164.331003 1399.743077 1724.656565 3222.399405 4458 6386
-16 2158.010631 2816.714287 3834.654913 7485.200810 10208 13402
-32 4861.850000 6020.596928 10861.552684 22833.405084 21708 27434
+# links generated unrolled runtime mujoco kdl ops_generated ops_runtime
+2 52.307071 56.862104 281.961874 648.320152 847.185349 325 1124
+4 195.640109 186.462237 643.250086 910.466320 1567.197461 1583 2878
+8 924.928705 914.344973 1567.835357 1923.556002 3576.606093 4458 6386
+16 1801.558991 2123.008147 2952.645494 4179.169779 7441.841405 10208 13402
+32 3673.535050 5009.617530 5902.429896 10578.705244 22424.680353 21708 27434
 EOD
 set terminal svg size 1500,950 dynamic font 'sans,11'
 set output 'benchmarks.svg'
@@ -58,20 +58,20 @@ set xlabel 'links'
 set multiplot layout 2,3 title 'dyngen benchmarks: chains (solid: planar, dashed: spatial)'
 set title 'rnea: time per call'
 set ylabel 'ns'
-plot $planar_chain_rnea using 1:2 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_rnea using 1:2 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_rnea using 1:3 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_rnea using 1:3 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial', $planar_chain_rnea using 1:4 with linespoints lc rgb '#7570b3' dt 1 pt 7 ps 0.5 title 'mujoco planar', $spatial_chain_rnea using 1:4 with linespoints lc rgb '#7570b3' dt 2 pt 7 ps 0.5 title 'mujoco spatial', $planar_chain_rnea using 1:5 with linespoints lc rgb '#e7298a' dt 1 pt 7 ps 0.5 title 'kdl planar', $spatial_chain_rnea using 1:5 with linespoints lc rgb '#e7298a' dt 2 pt 7 ps 0.5 title 'kdl spatial'
+plot $planar_chain_rnea using 1:2 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_rnea using 1:2 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_rnea using 1:3 with linespoints lc rgb '#66a61e' dt 1 pt 7 ps 0.5 title 'unrolled planar', $spatial_chain_rnea using 1:3 with linespoints lc rgb '#66a61e' dt 2 pt 7 ps 0.5 title 'unrolled spatial', $planar_chain_rnea using 1:4 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_rnea using 1:4 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial', $planar_chain_rnea using 1:5 with linespoints lc rgb '#7570b3' dt 1 pt 7 ps 0.5 title 'mujoco planar', $spatial_chain_rnea using 1:5 with linespoints lc rgb '#7570b3' dt 2 pt 7 ps 0.5 title 'mujoco spatial', $planar_chain_rnea using 1:6 with linespoints lc rgb '#e7298a' dt 1 pt 7 ps 0.5 title 'kdl planar', $spatial_chain_rnea using 1:6 with linespoints lc rgb '#e7298a' dt 2 pt 7 ps 0.5 title 'kdl spatial'
 set title 'crba: time per call'
 set ylabel 'ns'
-plot $planar_chain_crba using 1:2 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_crba using 1:2 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_crba using 1:3 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_crba using 1:3 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial', $planar_chain_crba using 1:4 with linespoints lc rgb '#7570b3' dt 1 pt 7 ps 0.5 title 'mujoco planar', $spatial_chain_crba using 1:4 with linespoints lc rgb '#7570b3' dt 2 pt 7 ps 0.5 title 'mujoco spatial', $planar_chain_crba using 1:5 with linespoints lc rgb '#e7298a' dt 1 pt 7 ps 0.5 title 'kdl planar', $spatial_chain_crba using 1:5 with linespoints lc rgb '#e7298a' dt 2 pt 7 ps 0.5 title 'kdl spatial'
+plot $planar_chain_crba using 1:2 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_crba using 1:2 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_crba using 1:3 with linespoints lc rgb '#66a61e' dt 1 pt 7 ps 0.5 title 'unrolled planar', $spatial_chain_crba using 1:3 with linespoints lc rgb '#66a61e' dt 2 pt 7 ps 0.5 title 'unrolled spatial', $planar_chain_crba using 1:4 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_crba using 1:4 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial', $planar_chain_crba using 1:5 with linespoints lc rgb '#7570b3' dt 1 pt 7 ps 0.5 title 'mujoco planar', $spatial_chain_crba using 1:5 with linespoints lc rgb '#7570b3' dt 2 pt 7 ps 0.5 title 'mujoco spatial', $planar_chain_crba using 1:6 with linespoints lc rgb '#e7298a' dt 1 pt 7 ps 0.5 title 'kdl planar', $spatial_chain_crba using 1:6 with linespoints lc rgb '#e7298a' dt 2 pt 7 ps 0.5 title 'kdl spatial'
 set title 'aba: time per call'
 set ylabel 'ns'
-plot $planar_chain_aba using 1:2 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_aba using 1:2 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_aba using 1:3 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_aba using 1:3 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial', $planar_chain_aba using 1:4 with linespoints lc rgb '#7570b3' dt 1 pt 7 ps 0.5 title 'mujoco planar', $spatial_chain_aba using 1:4 with linespoints lc rgb '#7570b3' dt 2 pt 7 ps 0.5 title 'mujoco spatial', $planar_chain_aba using 1:5 with linespoints lc rgb '#e7298a' dt 1 pt 7 ps 0.5 title 'kdl planar', $spatial_chain_aba using 1:5 with linespoints lc rgb '#e7298a' dt 2 pt 7 ps 0.5 title 'kdl spatial'
+plot $planar_chain_aba using 1:2 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_aba using 1:2 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_aba using 1:3 with linespoints lc rgb '#66a61e' dt 1 pt 7 ps 0.5 title 'unrolled planar', $spatial_chain_aba using 1:3 with linespoints lc rgb '#66a61e' dt 2 pt 7 ps 0.5 title 'unrolled spatial', $planar_chain_aba using 1:4 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_aba using 1:4 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial', $planar_chain_aba using 1:5 with linespoints lc rgb '#7570b3' dt 1 pt 7 ps 0.5 title 'mujoco planar', $spatial_chain_aba using 1:5 with linespoints lc rgb '#7570b3' dt 2 pt 7 ps 0.5 title 'mujoco spatial', $planar_chain_aba using 1:6 with linespoints lc rgb '#e7298a' dt 1 pt 7 ps 0.5 title 'kdl planar', $spatial_chain_aba using 1:6 with linespoints lc rgb '#e7298a' dt 2 pt 7 ps 0.5 title 'kdl spatial'
 set title 'rnea: operations per call'
 set ylabel 'add, mul, div, neg, sin, cos'
-plot $planar_chain_rnea using 1:6 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_rnea using 1:6 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_rnea using 1:7 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_rnea using 1:7 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial'
+plot $planar_chain_rnea using 1:7 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_rnea using 1:7 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_rnea using 1:8 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_rnea using 1:8 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial'
 set title 'crba: operations per call'
 set ylabel 'add, mul, div, neg, sin, cos'
-plot $planar_chain_crba using 1:6 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_crba using 1:6 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_crba using 1:7 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_crba using 1:7 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial'
+plot $planar_chain_crba using 1:7 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_crba using 1:7 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_crba using 1:8 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_crba using 1:8 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial'
 set title 'aba: operations per call'
 set ylabel 'add, mul, div, neg, sin, cos'
-plot $planar_chain_aba using 1:6 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_aba using 1:6 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_aba using 1:7 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_aba using 1:7 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial'
+plot $planar_chain_aba using 1:7 with linespoints lc rgb '#1b9e77' dt 1 pt 7 ps 0.5 title 'generated planar', $spatial_chain_aba using 1:7 with linespoints lc rgb '#1b9e77' dt 2 pt 7 ps 0.5 title 'generated spatial', $planar_chain_aba using 1:8 with linespoints lc rgb '#d95f02' dt 1 pt 7 ps 0.5 title 'runtime planar', $spatial_chain_aba using 1:8 with linespoints lc rgb '#d95f02' dt 2 pt 7 ps 0.5 title 'runtime spatial'
 unset multiplot
