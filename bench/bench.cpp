@@ -469,16 +469,16 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
     const std::string robot =
         p.links ? std::string(p.robot) + " " + std::to_string(p.links) : std::string(p.robot);
     for (const Algorithm a : algorithms) {
-      const auto g = time(p, a, Generated), sn = time(p, a, Snapped), sh = time(p, a, Unrolled),
+      const auto g = time(p, a, Generated), sn = time(p, a, Snapped), u = time(p, a, Unrolled),
                  r = time(p, a, Runtime), m = time(p, a, Mujoco), k = time(p, a, Kdl);
-      if (!g && !sn && !sh && !r && !m && !k) continue;  // filtered out
+      if (!g && !sn && !u && !r && !m && !k) continue;  // filtered out
       md << "| " << robot << " | " << p.base << " | " << s->robot.model.nv << " | "
          << gen::algorithm_name(a) << " | " << format_ns(g) << " | " << format_ns(sn) << " | "
-         << format_ns(sh) << " | " << format_ns(r) << " | " << format_ns(m) << " | "
+         << format_ns(u) << " | " << format_ns(r) << " | " << format_ns(m) << " | "
          << format_ns(k) << " | " << (s->kdl->is_chain() ? "chain" : "tree") << " | "
          << format_ratio(r, g) << " | " << format_ratio(m, g) << " | " << format_ratio(k, g)
          << " | " << format_ratio(r, sn) << " | " << format_ratio(m, sn) << " | "
-         << format_ratio(k, sn) << " | " << format_ratio(r, sh) << " | " << format_ratio(sh, g)
+         << format_ratio(k, sn) << " | " << format_ratio(r, u) << " | " << format_ratio(u, g)
          << " | " << format_ratio(k, r) << " | " << ops.generated[static_cast<int>(a)] << " | "
          << (p.snapped_header ? std::to_string(snapped_ops.generated[static_cast<int>(a)]) : "-") << " | "
          << ops.runtime[static_cast<int>(a)] << " |\n";

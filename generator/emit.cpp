@@ -104,10 +104,6 @@ OpCounts count_ops(const Program<T>& program, bool live_only) {
   return c;
 }
 
-const char* structure_name(Structure s) {
-  return s == Structure::Shared ? "shared" : "unrolled";
-}
-
 namespace {
 
 /// A maximal run of operations that the trace recorded for one body and pass.

@@ -37,8 +37,6 @@ std::string literal(float value);
 /// perform the same operations in the same order.
 enum class Structure { Unrolled, Shared };
 
-const char* structure_name(Structure s);
-
 /// Sections smaller than this stay in place under Structure::Shared: gathering a section's
 /// inputs and calling costs about as much as a few dozen operations (docs/performance.md,
 /// "Code structure").
@@ -54,8 +52,7 @@ struct EmittedCode {
 
 /// The code of one traced function.
 template <class T>
-EmittedCode emit_code(const Program<T>& program, const Model<double>& model,
-                      Structure structure = Structure::Unrolled);
+EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure);
 
 /// The body of joint_trig(q, trig): dyngen::sincos of every revolute joint's angle.
 std::string emit_joint_trig(const Model<double>& model);

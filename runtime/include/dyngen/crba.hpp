@@ -30,7 +30,7 @@ void crba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
     const int p = model.parent[i];
     if (p >= 0) ws.Ic[p] = ws.Ic[p] + apply_inertia_T(ws.Xup[i], ws.Ic[i]);
     for (int d = 0; d < joint_nv(model.joint_type[i]); ++d) {
-      TraceHook<S>::enter(i, Pass::CompositeInertia);
+      TraceHook<S>::enter(i, Pass::CompositeInertia);  // again after a column was carried up
       const int row = model.v_index[i] + d;
       Force<S> F = mul(ws.Ic[i], joint_column(model, i, d));
       joint_project(model, i, F, &M[row * n + model.v_index[i]]);
