@@ -16,7 +16,7 @@ packages=(
   libmpfrc++-dev libmpfr-dev libgmp-dev  # the MPFR reference (numerics/, dyngen report)
   libbenchmark-dev         # dyngen report's timings
   gnuplot-nox              # dyngen report's plot
-  libmujoco-dev            # peer comparison (tests/peers/mujoco)
+  libmujoco-dev libgl-dev  # peer comparison (tests/peers/mujoco); its CMake config needs OpenGL
   liborocos-kdl-dev libkdl-parser-dev  # peer comparison (tests/peers/kdl)
   valgrind                 # instruction counts (scripts/callgrind.sh)
 )
