@@ -91,14 +91,9 @@ nlohmann::json evaluate(const Model<double>& model, const nlohmann::json& states
       }
       if (state.contains("tau")) {
         if (!aba_checked) {
-          std::string names;
-          for (const int i : joints_blocking_aba(model))
-            names += (names.empty() ? "'" : ", '") + model.joint_name[i] + "'";
-          if (!names.empty())
-            throw InputError(fmt::format(
-                "ABA is undefined for this model: joints {} move no mass; lock them (--lock, "
-                "--lock-massless) or give \"a\" instead of \"tau\"",
-                names));
+          const std::string reason = aba_undefined_reason(model);
+          if (!reason.empty())
+            throw InputError(reason + ", or give \"a\" instead of \"tau\"");
           aba_checked = true;
         }
         aba<double>(model, ws, q, v, numbers(state, s, "tau", n), qdd);

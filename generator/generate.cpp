@@ -207,12 +207,6 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
 
 }  // namespace
 
-std::string joint_list(const Model<double>& model, const std::vector<int>& joints) {
-  std::string names;
-  for (const int i : joints) names += (names.empty() ? "'" : ", '") + model.joint_name[i] + "'";
-  return names;
-}
-
 std::string snap_text(const SnapReport& s) {
   return fmt::format(
       "Model snapped (--snap): {} of {} constants were within the tolerance of 0 or +-1 and are "
@@ -226,7 +220,12 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
       "  cond(M) median {:.2g}, max {:.2g}: a relative change of tau or M can change qdd up to "
       "that many times",
       c.samples, c.cond_M_median, c.cond_M_max);
-  if (with_aba) {
+  if (with_aba && !(c.pivot_min > 0)) {
+    text += fmt::format(
+        "\n  smallest ABA pivot D/max|IA| {:.2g} (joint '{}') is not positive: ABA divides by "
+        "zero or\n  worse at some of these states and keeps no correct digit",
+        c.pivot_min, c.pivot_joint);
+  } else if (with_aba) {
     const double lost = c.aba_digits_lost();
     text += fmt::format(
         "\n  smallest ABA pivot D/max|IA| {:.2g} (joint '{}'), articulated inertias span {:.2g}:\n"
@@ -256,15 +255,9 @@ Generated generate(const Robot& robot, const GenerateOptions& options) {
               robot.path, joint_list(robot.model, in_float)));
         break;
       }
-      std::string locks;
-      for (const int i : joints) locks += " --lock " + robot.model.joint_name[i];
       throw InputError(fmt::format(
-          "{}: ABA is undefined for this robot: {} joint{} move{} no mass (the articulated "
-          "inertia about the joint axis is zero, so ABA would divide by zero): {}.\n"
-          "Lock them ({}), lock every joint with a massless subtree (--lock-massless), or leave "
-          "ABA out (--algorithms rnea,crba); RNEA and CRBA are well defined.",
-          robot.path, joints.size(), joints.size() == 1 ? "" : "s", joints.size() == 1 ? "s" : "",
-          joint_list(robot.model, joints), locks.substr(1)));
+          "{}: {}, or leave ABA out (--algorithms rnea,crba); RNEA and CRBA are well defined.",
+          robot.path, aba_undefined_reason(robot.model)));
     }
   return options.single_precision ? generate_as<float>(robot, options)
                                   : generate_as<double>(robot, options);

@@ -56,8 +56,6 @@ std::string snap_text(const SnapReport& s);
 /// dyngen report record it.
 std::string conditioning_text(const numerics::Conditioning& c, bool with_aba);
 
-/// 'a', 'b', 'c': the names of the joints.
-std::string joint_list(const Model<double>& model, const std::vector<int>& joints);
 
 /// Traces, simplifies and prints every requested algorithm. Throws InputError when ABA is
 /// requested for a robot with a joint that moves no mass.

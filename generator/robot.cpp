@@ -13,6 +13,7 @@
 
 #include "dyngen/aba.hpp"
 #include "dyngen/crba.hpp"
+#include "dyngen/numerics/conditioning.hpp"
 
 namespace dyngen::gen {
 
@@ -101,7 +102,14 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
     crba<double>(model, ws, q, M);
     aba<double>(model, ws, q, v, tau, qdd);
     for (int i = 0; i < model.nbodies; ++i) {
-      if (model.joint_type[i] == JointType::Free) continue;  // massless subtrees catch these
+      if (model.joint_type[i] == JointType::Free) {
+        // ABA solves with the whole 6x6 articulated inertia: singular when the subtree can move
+        // without moving the free body (a massless root above a prismatic joint, say)
+        const double lambda = numerics::detail::smallest_eigenvalue(ws.IA[i]);
+        if (!std::isnan(lambda) && !(lambda > 1e-12 * numerics::detail::max_abs(ws.IA[i])))
+          flagged[i] = true;
+        continue;
+      }
       const int k = model.v_index[i];
       const double Mii = M[k * n + k];
       // a NaN D comes from a division by a vanishing D below, which is flagged itself
@@ -142,6 +150,50 @@ std::vector<int> joints_blocking_aba(const Model<double>& model) {
     if (std::find(joints.begin(), joints.end(), i) == joints.end()) joints.push_back(i);
   std::sort(joints.begin(), joints.end());
   return joints;
+}
+
+std::string joint_list(const Model<double>& model, const std::vector<int>& joints) {
+  std::string names;
+  for (const int i : joints) names += (names.empty() ? "'" : ", '") + model.joint_name[i] + "'";
+  return names;
+}
+
+std::string aba_undefined_reason(const Model<double>& model) {
+  std::vector<int> joints = joints_blocking_aba(model), free;
+  std::erase_if(joints, [&](int i) {
+    if (model.joint_type[i] != JointType::Free) return false;
+    free.push_back(i);
+    return true;
+  });
+  std::vector<std::string> why, remedies;
+  if (!joints.empty()) {
+    std::string locks;
+    for (const int i : joints) locks += " --lock " + model.joint_name[i];
+    why.push_back(fmt::format(
+        "{} joint{} move{} no mass (the articulated inertia about the joint axis is zero, so ABA "
+        "would divide by zero): {}",
+        joints.size(), joints.size() == 1 ? "" : "s", joints.size() == 1 ? "s" : "",
+        joint_list(model, joints)));
+    remedies.push_back(fmt::format("lock them ({})", locks.substr(1)));
+    remedies.push_back("lock every joint with a massless subtree (--lock-massless)");
+  }
+  for (const int i : free) {
+    const bool base = model.parent[i] < 0 && model.joint_name[i] == "floating_base";
+    why.push_back(fmt::format(
+        "the 6x6 articulated inertia of free joint '{}' is singular: its subtree can move without "
+        "moving body '{}'{}, so ABA would divide by zero",
+        model.joint_name[i], model.body_name[i], model.I[i].m == 0 ? ", which has no mass" : ""));
+    remedies.push_back(fmt::format("give link '{}' a mass and inertia", model.body_name[i]));
+    remedies.push_back(base ? "fix the base (leave out --floating-base)"
+                            : fmt::format("lock the joint (--lock {})", model.joint_name[i]));
+  }
+  if (why.empty()) return "";
+  std::string text = "ABA is undefined for this robot: " + why[0];
+  for (std::size_t k = 1; k < why.size(); ++k) text += "; " + why[k];
+  remedies[0][0] = static_cast<char>(std::toupper(static_cast<unsigned char>(remedies[0][0])));
+  text += ".\n" + remedies[0];
+  for (std::size_t k = 1; k < remedies.size(); ++k) text += ", " + remedies[k];
+  return text;
 }
 
 std::vector<int> joints_blocking_aba_in_float(const Model<double>& model) {

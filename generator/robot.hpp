@@ -64,6 +64,14 @@ std::vector<int> joints_with_massless_subtree(const Model<double>& model);
 /// The joints that make ABA undefined, both kinds above, in body order (empty: ABA is defined).
 std::vector<int> joints_blocking_aba(const Model<double>& model);
 
+/// 'a', 'b', 'c': the names of the joints.
+std::string joint_list(const Model<double>& model, const std::vector<int>& joints);
+
+/// Why ABA is undefined for the model (joints_blocking_aba), with the ways out that fit each
+/// joint, or "" when it is defined: "ABA is undefined for this robot: ... .\nLock them (...),
+/// ...". Callers add their own last way out (", or leave ABA out ...").
+std::string aba_undefined_reason(const Model<double>& model);
+
 /// The same for the model with its constants rounded to float, where inertias below float's
 /// range become zero.
 std::vector<int> joints_blocking_aba_in_float(const Model<double>& model);

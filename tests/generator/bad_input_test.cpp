@@ -42,6 +42,8 @@ LoadOptions load_options(const std::vector<std::string>& options) {
     if (options[k] == "--lock") load.lock.push_back(options[k + 1]);
   load.mimic_independent =
       std::find(options.begin(), options.end(), "--mimic-independent") != options.end();
+  load.floating_base =
+      std::find(options.begin(), options.end(), "--floating-base") != options.end();
   return load;
 }
 
@@ -116,6 +118,12 @@ const std::vector<Case> bad_robots = {
     {"AbaOnRomeo", models + "/romeo.urdf", {"--mimic-independent"},
      {"ABA is undefined", "24 joints move no mass", "--lock LHand", "--lock-massless",
       "--algorithms rnea,crba"}},
+    {"AbaOnMasslessFloatingCartPole", bad + "/floating_massless_cartpole.urdf",
+     {"--floating-base"},
+     {"ABA is undefined", "free joint 'floating_base' is singular", "body 'rail', which has no mass",
+      "Give link 'rail' a mass", "leave out --floating-base", "--algorithms rnea,crba"}},
+    {"AbaOnMasslessFloatingArm", bad + "/floating_massless_arm.urdf", {"--floating-base"},
+     {"ABA is undefined", "free joint 'floating_base' is singular", "--algorithms rnea,crba"}},
 };
 
 /// Options that only the command line parses.

@@ -1,7 +1,9 @@
 // The conditioning estimate at generation time: the banner records it and dyngen warns when the
 // generated scalar will keep too few digits. (That the estimate tracks the errors measured
 // against the MPFR reference is tests/numerics/stiff_test's to check.)
+#include <cmath>
 #include <fstream>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -34,6 +36,21 @@ TEST(Conditioning, BannerRecordsTheEstimate) {
   // ur5's mass matrix is well conditioned (a few hundred, README of the peers tests)
   EXPECT_GT(g.conditioning.cond_M_max, 10.0);
   EXPECT_LT(g.conditioning.cond_M_max, 1e4);
+}
+
+// A pivot that is not positive leaves ABA no correct digit: the estimate must not read it as
+// "0.0 digits lost" (log10 of a negative number is NaN, and max(0, NaN) is 0).
+TEST(Conditioning, NonPositivePivotLosesEveryDigit) {
+  for (const double pivot : {0.0, -3.4e-38, -1.0, std::nan("")}) {
+    numerics::Conditioning c;
+    c.pivot_min = pivot;
+    c.pivot_joint = "floating_base";
+    EXPECT_EQ(c.aba_digits_lost(), std::numeric_limits<double>::infinity()) << pivot;
+    const std::string text = conditioning_text(c, true);
+    EXPECT_NE(text.find("is not positive"), std::string::npos) << text;
+    EXPECT_EQ(text.find("may lose"), std::string::npos) << text;
+    EXPECT_EQ(text.find("0.0 digits"), std::string::npos) << text;
+  }
 }
 
 /// A heavy upper arm and a thin rod that spins about its own long axis: the rod's joint moves

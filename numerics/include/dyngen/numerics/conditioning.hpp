@@ -37,7 +37,11 @@ struct Conditioning {
 
   /// Decimal digits ABA loses to cancellation in its pivots, -log10(pivot_min): the estimate
   /// that tracks ABA's measured error (docs/numerics.md); 0 when the pivots were not measured.
-  double aba_digits_lost() const { return std::max(0.0, -std::log10(pivot_min)); }
+  /// Infinite when a pivot is not positive: ABA is undefined there.
+  double aba_digits_lost() const {
+    return pivot_min > 0 ? std::max(0.0, -std::log10(pivot_min))
+                         : std::numeric_limits<double>::infinity();
+  }
 };
 
 /// Decimal digits of a scalar type's unit roundoff: 15.95 for double, 7.22 for float.
@@ -78,15 +82,16 @@ S max_abs(const ArticulatedInertia<S>& A) {
 
 /// The smallest eigenvalue of [I H; H^T M]: the pivot that the LDL^T solve below a free joint
 /// divides by, at its smallest.
-inline long double smallest_eigenvalue(const ArticulatedInertia<long double>& A) {
-  Eigen::Matrix<long double, 6, 6> D;
+template <class S>
+S smallest_eigenvalue(const ArticulatedInertia<S>& A) {
+  Eigen::Matrix<S, 6, 6> D;
   D << A.I.xx, A.I.xy, A.I.xz, A.H.xx, A.H.xy, A.H.xz,  //
       A.I.xy, A.I.yy, A.I.yz, A.H.yx, A.H.yy, A.H.yz,   //
       A.I.xz, A.I.yz, A.I.zz, A.H.zx, A.H.zy, A.H.zz,   //
       A.H.xx, A.H.yx, A.H.zx, A.M.xx, A.M.xy, A.M.xz,   //
       A.H.xy, A.H.yy, A.H.zy, A.M.xy, A.M.yy, A.M.yz,   //
       A.H.xz, A.H.yz, A.H.zz, A.M.xz, A.M.yz, A.M.zz;
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix<long double, 6, 6>>(D, Eigen::EigenvaluesOnly)
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix<S, 6, 6>>(D, Eigen::EigenvaluesOnly)
       .eigenvalues()
       .minCoeff();
 }
