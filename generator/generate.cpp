@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <random>
 
 #include <fmt/format.h>
 
@@ -261,37 +259,6 @@ Generated generate(const Robot& robot, const GenerateOptions& options) {
     }
   return options.single_precision ? generate_as<float>(robot, options)
                                   : generate_as<double>(robot, options);
-}
-
-void write_files(const std::string& dir, const std::vector<GeneratedFile>& files) {
-  // "gen/" names the directory gen: stage beside it, not inside it
-  std::string name = dir;
-  while (name.size() > 1 && name.back() == '/') name.pop_back();
-  const fs::path target(name);
-  const bool fresh = !fs::exists(target);
-  if (!fresh && !fs::is_directory(target))
-    throw std::runtime_error(fmt::format("{}: exists and is not a directory", name));
-  std::random_device rd;
-  const std::string tag = fmt::format(".dyngen-tmp-{:08x}", rd());
-  const fs::path stage = fresh ? fs::path(target.string() + tag) : target;
-  try {
-    if (fresh) fs::create_directories(stage);
-    for (const GeneratedFile& file : files) {
-      const fs::path tmp = stage / (file.name + tag);
-      {
-        std::ofstream out(tmp, std::ios::binary);
-        out << file.text;
-        out.close();
-        if (!out) throw std::runtime_error(fmt::format("{}: cannot write", tmp.string()));
-      }
-      fs::rename(tmp, stage / file.name);
-    }
-    if (fresh) fs::rename(stage, target);
-  } catch (...) {
-    std::error_code ignored;
-    if (fresh) fs::remove_all(stage, ignored);
-    throw;
-  }
 }
 
 }  // namespace dyngen::gen

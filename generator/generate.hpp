@@ -6,6 +6,7 @@
 
 #include "dyngen/numerics/conditioning.hpp"
 #include "emit.hpp"
+#include "output.hpp"
 #include "robot.hpp"
 #include "trace.hpp"
 
@@ -27,11 +28,6 @@ struct FunctionCounts {
   OpCounts generated;  // in the emitted function
   OpCounts runtime;    // what runtime<T> performs for the same call
   int sections = 0, shared_sections = 0, shared_functions = 0;  // EmittedCode's
-};
-
-struct GeneratedFile {
-  std::string name;
-  std::string text;
 };
 
 struct Generated {
@@ -60,10 +56,5 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba);
 /// Traces, simplifies and prints every requested algorithm. Throws InputError when ABA is
 /// requested for a robot with a joint that moves no mass.
 Generated generate(const Robot& robot, const GenerateOptions& options);
-
-/// Writes the files into dir, creating it if needed. Each file is written to a temporary name
-/// and renamed into place, so a failure leaves no half-written file; a new directory is
-/// assembled under a temporary name and renamed as a whole.
-void write_files(const std::string& dir, const std::vector<GeneratedFile>& files);
 
 }  // namespace dyngen::gen

@@ -1,6 +1,8 @@
 // dyngen ROBOT -o DIR: reads a robot, traces the runtime's algorithms for it and writes the
 // specialised code, the model tables, the bit-for-bit check and a CMakeLists.txt.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -58,6 +60,38 @@ std::vector<Algorithm> parse_algorithms(const std::string& text) {
   return out;
 }
 
+/// A number in [lo, hi] (an integer if `integer`): CLI11's Range lets NaN through (no
+/// comparison with it is true) and calls a word "not in range".
+CLI::Validator number_in(double lo, double hi, bool integer = false) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(x) ||
+            (integer && x != std::floor(x)))
+          return fmt::format("'{}' is not {}", text, integer ? "an integer" : "a finite number");
+        if (!(x >= lo && x <= hi)) return fmt::format("{} is not between {} and {}", text, lo, hi);
+        return "";
+      },
+      fmt::format("{} in [{}, {}]", integer ? "INT" : "NUMBER", lo, hi));
+}
+
+/// Parses the command line. --help and --version print and give exit status 0; a mistake is
+/// reported like bad input: `COMMAND: error: ...` and exit status 1. Empty when the command is to
+/// run.
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    fmt::print(stderr, "{}: error: {}\nRun '{} --help' for the options.\n", app.get_name(),
+               e.what(), app.get_name());
+    return 1;
+  }
+  return std::nullopt;
+}
+
 /// Where find_package(dyngen) should look: beside the executable in a build tree, or
 /// <prefix>/lib/cmake/dyngen for an installed one.
 std::string package_dir() {
@@ -96,7 +130,7 @@ struct ModelFlags {
                    "and offset components within TOL (relative) of 0, exact; changes the model "
                    "by at most TOL relative, and says so in the banner")
         ->type_name("TOL")
-        ->check(CLI::Range(0.0, 1e-3));
+        ->check(number_in(0.0, 1e-3));
   }
 
   LoadOptions load_options() const {
@@ -123,8 +157,9 @@ struct ModelFlags {
   }
 };
 
-/// Runs a command's work: bad input (InputError) exits with 1, any other failure with 2, each
-/// with its message on stderr after `command: error:`.
+/// Runs a command's work, with its message on stderr after `command: error:`: bad input
+/// (InputError) and files that cannot be read or written (FileError, or the file system's own
+/// error) exit with 1, a failure of dyngen itself with 2.
 template <class Work>
 int run_reporting_errors(const char* command, Work work) {
   try {
@@ -132,6 +167,15 @@ int run_reporting_errors(const char* command, Work work) {
   } catch (const InputError& e) {
     fmt::print(stderr, "{}: error: {}\n", command, e.what());
     return 1;
+  } catch (const FileError& e) {
+    fmt::print(stderr, "{}: error: {}\n", command, e.what());
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    fmt::print(stderr, "{}: error: {}: {}\n", command, e.path1().string(), e.code().message());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "{}: error: out of memory\n", command);
+    return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}: error: {}\n", command, e.what());
     return 2;
@@ -152,7 +196,7 @@ int eval_main(int argc, char** argv) {
                  "\"tau\" instead of \"a\"; - reads standard input")
       ->required();
   flags.add_to(app);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen eval", [&] {
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
@@ -177,19 +221,22 @@ int report_main(int argc, char** argv) {
   app.add_option("--algorithms", algorithms, "comma-separated subset of rnea,crba,aba")
       ->capture_default_str();
   app.add_option("--states", options.states, "random states for the errors")
-      ->check(CLI::Range(1, 10000000))
+      ->check(number_in(1, 10000000, true))
       ->capture_default_str();
   app.add_option("--seed", options.seed, "seed of the random states")->capture_default_str();
   app.add_option("--min-time", options.min_time, "seconds per benchmark repetition")
-      ->check(CLI::Range(0.001, 60.0))
+      ->check(number_in(0.001, 60.0))
       ->capture_default_str();
   app.add_option("--repetitions", options.repetitions,
                  "benchmark repetitions; the time reported is their median")
-      ->check(CLI::Range(1, 1000))
+      ->check(number_in(1, 1000, true))
       ->capture_default_str();
   flags.add_to(app);
+  app.add_flag("--force", options.force,
+               "write into DIR even when it holds files that dyngen report did not write (its "
+               "report files and harness/ are replaced, the rest kept)");
   app.add_flag("-q,--quiet", options.quiet, "print errors and warnings only");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen report", [&] {
     options.algorithms = parse_algorithms(algorithms);
     options.model_flags = flags.text();
@@ -214,10 +261,11 @@ int main(int argc, char** argv) {
                "(dyngen eval --help)\n"
                "dyngen report ROBOT -o DIR: error against run time of every variant "
                "(dyngen report --help)"};
+  app.name("dyngen");
   std::string input, output, algorithms = "rnea,crba,aba", scalar = "double", name,
       structure = "shared";
   ModelFlags flags;
-  bool quiet = false;
+  bool quiet = false, force = false;
   app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
   app.add_option("-o,--output", output, "output directory (created if missing)")->required();
   app.add_option("--algorithms", algorithms, "comma-separated subset of rnea,crba,aba")
@@ -233,9 +281,13 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"unrolled", "shared"}))
       ->capture_default_str();
   flags.add_to(app);
+  app.add_flag("--force", force,
+               "write into DIR even when it holds files dyngen did not write (files of the same "
+               "names are replaced, the rest kept); without it DIR must be new, empty or a "
+               "package dyngen wrote, which is replaced whole");
   app.add_flag("-q,--quiet", quiet, "print errors and warnings only");
   app.set_version_flag("--version", std::string("dyngen ") + version);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_command_line(app, argc, argv)) return *status;
 
   return run_reporting_errors("dyngen", [&] {
     const LoadOptions load = flags.load_options();
@@ -244,6 +296,7 @@ int main(int argc, char** argv) {
     options.single_precision = scalar == "float";
     options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
 
+    check_output_dir(output, force);
     if (!quiet) fmt::print("dyngen {}: reading {}\n", version, input);
     const Robot robot = load_robot(input, load);
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
@@ -266,7 +319,7 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
     const Generated generated = generate(robot, options);
-    write_files(output, generated.files);
+    write_package(output, generated.files, force);
     for (const std::string& w : generated.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
 
     if (!quiet) {

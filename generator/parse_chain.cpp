@@ -25,6 +25,8 @@ struct Reader {
                  const std::set<std::string>& keys) const {
     if (!map.IsMap()) fail(map, where, "expected a mapping");
     for (const auto& kv : map) {
+      if (!kv.first.IsScalar())
+        fail(kv.first, where, "a key must be a name, not a list or mapping");
       const std::string key = kv.first.as<std::string>();
       if (!keys.count(key)) {
         std::string allowed;
@@ -56,12 +58,12 @@ struct Reader {
 
 }  // namespace
 
-RobotDescription parse_chain(const std::string& path) {
+namespace {
+
+RobotDescription parse_document(const std::string& path, const std::string& text) {
   YAML::Node doc;
   try {
-    doc = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(fmt::format("{}: cannot read the file", path));
+    doc = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}:{}: malformed YAML: {}", path, e.mark.line + 1, e.msg));
   }
@@ -139,6 +141,18 @@ RobotDescription parse_chain(const std::string& path) {
     parent_length = link["length"] ? r.number(link["length"], at + ".length") : 0.0;
   }
   return robot;
+}
+
+}  // namespace
+
+RobotDescription parse_chain(const std::string& path, const std::string& text) {
+  try {
+    return parse_document(path, text);
+  } catch (const YAML::Exception& e) {
+    // what the checks above did not foresee is still bad input, with yaml-cpp's line
+    throw InputError(e.mark.is_null() ? fmt::format("{}: {}", path, e.msg)
+                                      : fmt::format("{}:{}: {}", path, e.mark.line + 1, e.msg));
+  }
 }
 
 }  // namespace dyngen::gen

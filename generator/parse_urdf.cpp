@@ -2,10 +2,8 @@
 // document order of joints and the tags urdfdom ignores.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include <console_bridge/console.h>
 #include <fmt/format.h>
@@ -29,14 +27,6 @@ class CollectMessages : public console_bridge::OutputHandler {
   }
   std::vector<std::string> errors, warnings;
 };
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot read the file", path));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 Vec3<double> vec(const urdf::Vector3& v) { return {v.x, v.y, v.z}; }
 
@@ -85,8 +75,7 @@ void check_no_loop(const std::string& path, const tinyxml2::XMLElement* robot) {
 
 }  // namespace
 
-RobotDescription parse_urdf(const std::string& path) {
-  const std::string xml = read_file(path);
+RobotDescription parse_urdf(const std::string& path, const std::string& xml) {
   RobotDescription robot;
 
   tinyxml2::XMLDocument doc;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dyngen/numerics/reference.hpp"
+#include "output.hpp"
 #include "template.hpp"
 
 namespace dyngen::gen {
@@ -23,13 +24,6 @@ std::string quoted(const std::string& s) {
   std::string out = "'";
   for (const char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
   return out + "'";
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error(fmt::format("{}: cannot write", path.string()));
 }
 
 /// Runs a shell command with its output in log (and echoed, indented, if echo); throws with the
@@ -84,7 +78,7 @@ numerics::Conditioning write_variant(const Robot& robot, const ReportOptions& op
     if (f.name == name + "_dynamics.hpp" || f.name == name + "_dynamics.cpp" ||
         f.name == "dyngen_sincos.hpp" || (with_model && f.name == name + "_model.hpp"))
       files.push_back(f);
-  write_files(dir.string(), files);
+  write_package(dir.string(), files);
   return generated.conditioning;
 }
 
@@ -174,6 +168,23 @@ std::pair<std::string, std::string> plot_parts(const nlohmann::json& results, in
   return {data, plots};
 }
 
+/// A directory that dyngen report may write into without --force: new, empty, or holding only
+/// what an earlier report wrote.
+bool report_may_write(const fs::path& dir) {
+  if (!fs::exists(dir)) return true;
+  if (!fs::is_directory(dir))
+    throw FileError(fmt::format("{}: exists and is not a directory", dir.string()));
+  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+    std::string name = e.path().filename().string();
+    if (name == "harness" && e.is_directory()) continue;
+    if (name.ends_with(".tmp")) name.resize(name.size() - 4);
+    if (std::find(std::begin(report_files), std::end(report_files), name) ==
+        std::end(report_files))
+      return false;
+  }
+  return true;
+}
+
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 }  // namespace
@@ -182,6 +193,12 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   const std::string name = identifier(robot.name);
   const fs::path out_dir(dir);
   const fs::path work = out_dir / "harness";
+  if (!options.force && !report_may_write(out_dir))
+    throw FileError(fmt::format(
+        "{}: exists and holds files that dyngen report did not write; it writes only into a new "
+        "or empty directory or over an earlier report. Choose another directory, or give --force "
+        "to write into it (its report files and harness/ are replaced, the rest kept).",
+        dir));
   fs::create_directories(work);
   const auto step = [&](int k, const std::string& text) {
     if (!options.quiet) fmt::print("[{}/5] {}\n", k, text), std::fflush(stdout);
@@ -198,10 +215,10 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   const std::string banner = fmt::format(
       "Written by dyngen {} report for robot '{}' ({}); rewritten on every run.", version,
       robot.name, fs::path(robot.path).filename().string());
-  write_text(work / "CMakeLists.txt",
+  write_file(work / "CMakeLists.txt",
              fill("report_CMakeLists.txt.in", {{"banner", "# " + banner}, {"name", name},
                                                 {"robot", robot.name}}));
-  write_text(work / "harness.cpp",
+  write_file(work / "harness.cpp",
              fill("report_harness.cpp.in",
                   {{"banner", "// " + banner},
                    {"name", name},
@@ -293,20 +310,26 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
 
   // every file under a temporary name first, then renamed into place
   const std::string tmp = ".tmp";
-  write_text(out_dir / ("report.md" + tmp), markdown);
-  write_text(out_dir / ("report.json" + tmp), report.dump(2) + "\n");
-  write_text(out_dir / ("report.gp" + tmp), script);
   std::vector<std::string> written = {"report.md", "report.json", "report.gp"};
-  if (have_gnuplot()) {
-    run("drawing the plot with gnuplot",
-        fmt::format("cd {} && gnuplot -e \"output_file='report.svg{}'\" report.gp{} && "
-                    "test -s report.svg{}",
-                    quoted(out_dir.string()), tmp, tmp, tmp),
-        work / "plot.log", false);
-    written.push_back("report.svg");
-  } else {
-    fmt::print(stderr, "dyngen report: warning: gnuplot not found; no plot drawn (install "
-                       "gnuplot-nox, then run gnuplot report.gp in {})\n", dir);
+  try {
+    write_file(out_dir / ("report.md" + tmp), markdown);
+    write_file(out_dir / ("report.json" + tmp), report.dump(2) + "\n");
+    write_file(out_dir / ("report.gp" + tmp), script);
+    if (have_gnuplot()) {
+      written.push_back("report.svg");
+      run("drawing the plot with gnuplot",
+          fmt::format("cd {} && gnuplot -e \"output_file='report.svg{}'\" report.gp{} && "
+                      "test -s report.svg{}",
+                      quoted(out_dir.string()), tmp, tmp, tmp),
+          work / "plot.log", false);
+    } else {
+      fmt::print(stderr, "dyngen report: warning: gnuplot not found; no plot drawn (install "
+                         "gnuplot-nox, then run gnuplot report.gp in {})\n", dir);
+    }
+  } catch (...) {
+    std::error_code ignored;
+    for (const std::string& f : written) fs::remove(out_dir / (f + tmp), ignored);
+    throw;
   }
   for (const std::string& f : written) fs::rename(out_dir / (f + tmp), out_dir / f);
   if (!options.quiet) {

@@ -24,6 +24,7 @@ struct ReportOptions {
   std::string command;         // the command line, for the report's footer
   std::string package_dir;     // where find_package(dyngen) finds this dyngen
   bool quiet = false;
+  bool force = false;          // write into a directory that holds other files too
 };
 
 /// The files dyngen report writes into DIR (besides its work directory DIR/harness).

@@ -1,7 +1,9 @@
 #include "robot.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -19,11 +21,7 @@ namespace dyngen::gen {
 
 namespace {
 
-std::string sha256_of_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  const std::string bytes = s.str();
+std::string sha256_of(const std::string& bytes) {
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int size = 0;
   EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha256(), nullptr);
@@ -200,15 +198,32 @@ std::vector<int> joints_blocking_aba_in_float(const Model<double>& model) {
   return joints_blocking_aba(model.cast<float>().cast<double>());
 }
 
+std::string read_file(const std::string& path) {
+  if (path.empty()) throw InputError("no file given: the path is empty");
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (status.type() == std::filesystem::file_type::not_found)
+    throw InputError(fmt::format("{}: no such file", path));
+  if (error) throw InputError(fmt::format("{}: cannot read the file: {}", path, error.message()));
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(fmt::format("{}: not a regular file", path));
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError(fmt::format("{}: cannot read the file: {}", path, std::strerror(errno)));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad())
+    throw InputError(fmt::format("{}: cannot read the file: {}", path, std::strerror(errno)));
+  return text.str();
+}
+
 Robot load_robot(const std::string& path, const LoadOptions& options) {
-  if (!std::filesystem::is_regular_file(path))
-    throw InputError(fmt::format(
-        "{}: {}", path, std::filesystem::exists(path) ? "not a regular file" : "no such file"));
+  const std::string text = read_file(path);
   RobotDescription description;
   if (has_extension(path, {".urdf", ".xml"})) {
-    description = parse_urdf(path);
+    description = parse_urdf(path, text);
   } else if (has_extension(path, {".yaml", ".yml"})) {
-    description = parse_chain(path);
+    description = parse_chain(path, text);
   } else {
     throw InputError(fmt::format(
         "{}: unknown kind of robot file (expected .urdf or .xml for URDF, .yaml or .yml for a "
@@ -219,7 +234,7 @@ Robot load_robot(const std::string& path, const LoadOptions& options) {
   Robot robot;
   robot.path = path;
   robot.name = description.name;
-  robot.sha256 = sha256_of_file(path);
+  robot.sha256 = sha256_of(text);
   robot.warnings = description.warnings;
   for (const LinkSpec& link : description.builder.links())
     check_inertia(path, link, robot.warnings);

@@ -17,6 +17,12 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A file or directory that cannot be written, or that dyngen will not overwrite: the message
+/// names the path and the reason. Like bad input, the user's to fix.
+struct FileError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// A parsed robot before canonicalisation.
 struct RobotDescription {
   std::string name;
@@ -26,8 +32,12 @@ struct RobotDescription {
   std::vector<std::pair<std::string, std::string>> mimics;  // (joint, the joint it mimics)
 };
 
-RobotDescription parse_urdf(const std::string& path);
-RobotDescription parse_chain(const std::string& path);
+/// The robot in `text`, read from `path` (which messages name).
+RobotDescription parse_urdf(const std::string& path, const std::string& text);
+RobotDescription parse_chain(const std::string& path, const std::string& text);
+
+/// A file's bytes; InputError naming the path and the system's reason when it cannot be read.
+std::string read_file(const std::string& path);
 
 struct LoadOptions {
   std::vector<std::string> lock;        // joints to turn into fixed ones
