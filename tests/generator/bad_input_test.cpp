@@ -113,6 +113,10 @@ const std::vector<Case> bad_robots = {
      {"joint 'link1_joint'", "zero or non-finite axis"}},
     {"ChainVectorOfTwo", bad + "/bad_vector.yaml", {}, {"links[0].com", "expected [x, y, z]"}},
     {"ChainNoLinks", bad + "/no_links.yaml", {}, {"links", "expected a non-empty list"}},
+    {"ChainKeyNotAName", bad + "/key_not_a_name.yaml", {},
+     {"key_not_a_name.yaml:2:", "chain spec", "a key must be a name"}},
+    {"ChainLinkKeyNotAName", bad + "/link_key_not_a_name.yaml", {},
+     {"link_key_not_a_name.yaml:4:", "links[0]", "a key must be a name"}},
     {"ChainDuplicateLink", bad + "/duplicate_link.yaml", {},
      {"links[1]", "link 'arm' is defined twice"}},
     {"AbaOnRomeo", models + "/romeo.urdf", {"--mimic-independent"},
@@ -143,7 +147,43 @@ const std::vector<Case> bad_options = {
     {"AlgorithmsEmpty", models + "/ur5.urdf", {"--algorithms", ""},
      {"--algorithms", "name at least one"}},
     {"ScalarUnknown", models + "/ur5.urdf", {"--scalar", "half"}, {"--scalar", "half"}},
+    {"UnknownOption", models + "/ur5.urdf", {"--bogus"}, {"--bogus", "--help"}},
+    {"SnapNotANumber", models + "/ur5.urdf", {"--snap", "abc"},
+     {"--snap: 'abc' is not a finite number"}},
+    {"SnapNan", models + "/ur5.urdf", {"--snap", "nan"}, {"--snap: 'nan' is not a finite number"}},
+    {"SnapTooLarge", models + "/ur5.urdf", {"--snap", "0.5"},
+     {"--snap: 0.5 is not between 0 and 0.001"}},
+    {"GravityAndNoGravity", models + "/ur5.urdf", {"--gravity", "0,0,1", "--no-gravity"},
+     {"--gravity excludes --no-gravity"}},
 };
+
+// Command-line mistakes are errors like bad input: `dyngen: error:` and exit status 1 (CLI11's
+// own exit codes are 105 to 114), for each command.
+TEST_F(Scratch, CommandLineMistakesExitWith1AndSaySo) {
+  const std::string ur5 = models + "/ur5.urdf", out = (dir / "out").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> mistakes = {
+      {{ur5}, "dyngen: error: --output is required"},
+      {{ur5, "-o"}, "dyngen: error: "},
+      {{"-o", out}, "dyngen: error: robot is required"},
+      {{ur5, "-o", out, "--repetitions", "2"}, "dyngen: error: "},
+      {{"eval", ur5}, "dyngen eval: error: --states is required"},
+      {{"eval", ur5, "--states", "-", "--snap", "-1"}, "dyngen eval: error: --snap: -1 is not"},
+      {{"report", ur5, "-o", out, "--states", "1.5"},
+       "dyngen report: error: --states: '1.5' is not an integer"},
+      {{"report", ur5, "-o", out, "--min-time", "nan"},
+       "dyngen report: error: --min-time: 'nan' is not a finite number"},
+  };
+  for (const auto& [args, message] : mistakes) {
+    const CliResult r = run_dyngen(args, dir);
+    EXPECT_EQ(r.status, 1) << args.back();
+    EXPECT_EQ(r.err.rfind(message, 0), 0u) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  EXPECT_EQ(run_dyngen({"--help"}, dir).status, 0);
+  EXPECT_EQ(run_dyngen({"--version"}, dir).status, 0);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 
 class BadRobot : public Scratch, public ::testing::WithParamInterface<Case> {};
 class BadInput : public Scratch, public ::testing::WithParamInterface<Case> {};
@@ -178,6 +218,13 @@ TEST_P(BadRobot, CommandExitsWithStatus1AndTheLibrarysMessage) {
   const std::string message = library_error(c.robot, load_options(c.options));
   EXPECT_NE(r.err.find("dyngen: error: " + message + "\n"), std::string::npos)
       << r.err << "\ndoes not hold: " << message;
+}
+
+TEST_P(BadInput, CommandExitsWithStatus1) {
+  const Case& c = GetParam();
+  std::vector<std::string> args{c.robot, "-q", "-o", (dir / "out").string()};
+  args.insert(args.end(), c.options.begin(), c.options.end());
+  EXPECT_EQ(run_dyngen(args, dir).status, 1);
 }
 
 TEST_P(BadInput, CommandLeavesAnExistingOutputDirectoryUntouched) {
