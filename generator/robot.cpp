@@ -218,7 +218,10 @@ std::string read_file(const std::string& path) {
 }
 
 Robot load_robot(const std::string& path, const LoadOptions& options) {
-  const std::string text = read_file(path);
+  return parse_robot(path, read_file(path), options);
+}
+
+Robot parse_robot(const std::string& path, const std::string& text, const LoadOptions& options) {
   RobotDescription description;
   if (has_extension(path, {".urdf", ".xml"})) {
     description = parse_urdf(path, text);

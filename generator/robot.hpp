@@ -63,6 +63,9 @@ inline constexpr Vec3<double> default_gravity{0, 0, -9.81};
 /// Reads a URDF (.urdf, .xml) or a chain spec (.yaml, .yml) and builds its model.
 Robot load_robot(const std::string& path, const LoadOptions& options = {});
 
+/// The same for a file's text, read from `path` (whose extension says the format).
+Robot parse_robot(const std::string& path, const std::string& text, const LoadOptions& options);
+
 /// Joints whose articulated inertia D vanishes (ABA would divide by zero): D <= 1e-12 of the
 /// joint's own mass-matrix diagonal at any of a few sampled states. Joints above them, whose
 /// D the division by zero turns into NaN, are not listed.

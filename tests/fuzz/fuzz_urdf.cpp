@@ -1,0 +1,12 @@
+// Fuzz target: any bytes as a URDF file (the first byte chooses the load options).
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_robot.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  dyngen::fuzz::load_and_generate(
+      "fuzz.urdf", std::string(reinterpret_cast<const char*>(data) + 1, size - 1), data[0]);
+  return 0;
+}
