@@ -1,11 +1,14 @@
 #include "eval.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iostream>
-#include <sstream>
+#include <string_view>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "dyngen/aba.hpp"
 #include "dyngen/crba.hpp"
@@ -16,7 +19,8 @@ namespace dyngen::gen {
 
 namespace {
 
-std::vector<double> numbers(const nlohmann::json& state, int index, const char* field, int size) {
+std::vector<double> numbers(const nlohmann::json& state, std::size_t index, const char* field,
+                            int size) {
   const auto it = state.find(field);
   if (it == state.end())
     throw InputError(fmt::format("state {}: no \"{}\"", index, field));
@@ -33,7 +37,8 @@ std::vector<double> numbers(const nlohmann::json& state, int index, const char* 
   return x;
 }
 
-void check_quaternions(const Model<double>& model, const std::vector<double>& q, int index) {
+void check_quaternions(const Model<double>& model, const std::vector<double>& q,
+                       std::size_t index) {
   for (int i = 0; i < model.nbodies; ++i) {
     if (model.joint_type[i] != JointType::Free) continue;
     const double* w = &q[model.q_index[i] + 3];
@@ -46,69 +51,132 @@ void check_quaternions(const Model<double>& model, const std::vector<double>& q,
   }
 }
 
-}  // namespace
-
-nlohmann::json read_states(const std::string& path) {
-  std::stringstream text;
-  if (path == "-") {
-    text << std::cin.rdbuf();
-  } else {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("{}: cannot read the file", path));
-    text << in.rdbuf();
+/// A state's fields, checked in a fixed order: unknown fields, q, v, a, tau.
+EvalState state_of(const Model<double>& model, const nlohmann::json& state, std::size_t s) {
+  if (!state.is_object()) throw InputError(fmt::format("state {}: not a JSON object", s));
+  for (const auto& [key, value] : state.items())
+    if (key != "q" && key != "v" && key != "a" && key != "tau")
+      throw InputError(fmt::format("state {}: unknown field \"{}\" (expected q, v, a, tau)", s,
+                                   key));
+  EvalState out;
+  out.q = numbers(state, s, "q", model.nq);
+  check_quaternions(model, out.q, s);
+  if (state.contains("a") || state.contains("tau")) {
+    out.v = numbers(state, s, "v", model.nv);
+    if (state.contains("a")) out.a = numbers(state, s, "a", model.nv);
+    if (state.contains("tau")) out.tau = numbers(state, s, "tau", model.nv);
+  } else if (state.contains("v")) {
+    throw InputError(fmt::format("state {}: \"v\" without \"a\" or \"tau\"", s));
   }
-  try {
-    return nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: not valid JSON: {}", path == "-" ? "<stdin>" : path,
-                                 e.what()));
-  }
+  return out;
 }
 
-nlohmann::json evaluate(const Model<double>& model, const nlohmann::json& states) {
-  if (!states.is_array())
-    throw InputError("the states must be a JSON array of objects {\"q\", \"v\", \"a\" or \"tau\"}");
-  const int n = model.nv;
-  Workspace<double> ws(model);
-  std::vector<double> tau(n), qdd(n), M(n * n);
-  bool aba_checked = false;
-  nlohmann::json results = nlohmann::json::array();
-  for (int s = 0; s < static_cast<int>(states.size()); ++s) {
-    const nlohmann::json& state = states[s];
-    if (!state.is_object()) throw InputError(fmt::format("state {}: not a JSON object", s));
-    for (const auto& [key, value] : state.items())
-      if (key != "q" && key != "v" && key != "a" && key != "tau")
-        throw InputError(fmt::format("state {}: unknown field \"{}\" (expected q, v, a, tau)", s,
-                                     key));
-    const std::vector<double> q = numbers(state, s, "q", model.nq);
-    check_quaternions(model, q, s);
-    nlohmann::json result = nlohmann::json::object();
-    if (state.contains("a") || state.contains("tau")) {
-      const std::vector<double> v = numbers(state, s, "v", n);
-      if (state.contains("a")) {
-        rnea<double>(model, ws, q, v, numbers(state, s, "a", n), tau);
-        result["tau"] = tau;
-      }
-      if (state.contains("tau")) {
-        if (!aba_checked) {
-          const std::string reason = aba_undefined_reason(model);
-          if (!reason.empty())
-            throw InputError(reason + ", or give \"a\" instead of \"tau\"");
-          aba_checked = true;
-        }
-        aba<double>(model, ws, q, v, numbers(state, s, "tau", n), qdd);
-        result["qdd"] = qdd;
-      }
-    } else if (state.contains("v")) {
-      throw InputError(fmt::format("state {}: \"v\" without \"a\" or \"tau\"", s));
-    }
-    crba<double>(model, ws, q, M);
-    nlohmann::json rows = nlohmann::json::array();
-    for (int i = 0; i < n; ++i) rows.push_back(std::vector<double>(&M[i * n], &M[i * n] + n));
-    result["M"] = rows;
-    results.push_back(result);
+/// Writes text, or throws FileError with the system's reason.
+void put(std::FILE* out, std::string_view text) {
+  if (std::fwrite(text.data(), 1, text.size(), out) != text.size())
+    throw FileError(fmt::format("cannot write the results to standard output: {}",
+                                std::strerror(errno)));
+}
+
+/// An array as dump(2) prints it `spaces` deep: its lines after the first indented so much.
+std::string array_text(const std::vector<double>& x, int spaces) {
+  const std::string text = nlohmann::json(x).dump(2);
+  std::string out;
+  for (const char c : text) {
+    out += c;
+    if (c == '\n') out.append(static_cast<std::size_t>(spaces), ' ');
   }
-  return {{"joints", velocity_names(model)}, {"nq", model.nq}, {"nv", n}, {"results", results}};
+  return out;
+}
+
+void check_finite(const std::vector<double>& x, std::size_t s, const std::string& field) {
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (!std::isfinite(x[k]))
+      throw InputError(fmt::format("state {}: \"{}\"[{}] is not finite ({}): the inputs overflow",
+                                   s, field, k, x[k]));
+}
+
+}  // namespace
+
+std::vector<EvalState> read_states(const Model<double>& model, std::istream& in,
+                                   const std::string& name) {
+  using Event = nlohmann::json::parse_event_t;
+  std::vector<EvalState> states;
+  bool array = false, aba_checked = false;
+  // each element of the top-level array is taken when parsed and dropped from the tree
+  const auto take = [&](int depth, Event event, nlohmann::json& parsed) {
+    if (depth == 0 && !array) {
+      if (event != Event::array_start)
+        throw InputError(
+            "the states must be a JSON array of objects {\"q\", \"v\", \"a\" or \"tau\"}");
+      array = true;
+    }
+    if (depth != 1 || (event != Event::object_end && event != Event::array_end &&
+                       event != Event::value))
+      return true;
+    states.push_back(state_of(model, parsed, states.size()));
+    if (!states.back().tau.empty() && !aba_checked) {
+      const std::string reason = aba_undefined_reason(model);
+      if (!reason.empty()) throw InputError(reason + ", or give \"a\" instead of \"tau\"");
+      aba_checked = true;
+    }
+    return false;
+  };
+  try {
+    [[maybe_unused]] const nlohmann::json emptied = nlohmann::json::parse(in, take);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(fmt::format("{}: not valid JSON: {}", name, e.what()));
+  }
+  if (in.bad()) throw InputError(fmt::format("{}: cannot read: {}", name, std::strerror(errno)));
+  return states;
+}
+
+std::vector<EvalState> read_states(const Model<double>& model, const std::string& path) {
+  if (path == "-") return read_states(model, std::cin, "<stdin>");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read the file", path));
+  return read_states(model, in, path);
+}
+
+void write_results(const Model<double>& model, const std::vector<EvalState>& states,
+                   std::FILE* out) {
+  const std::size_t n = static_cast<std::size_t>(model.nv);
+  Workspace<double> ws(model);
+  std::vector<double> tau, qdd, M;
+  std::string head =
+      nlohmann::json{{"joints", velocity_names(model)}, {"nq", model.nq}, {"nv", model.nv}}.dump(2);
+  head.resize(head.size() - 2);  // "\n}": the results follow
+  put(out, head + ",\n  \"results\": [");
+  for (std::size_t s = 0; s < states.size(); ++s) {
+    const EvalState& state = states[s];
+    tau.assign(state.a.empty() ? 0 : n, 0.0);
+    qdd.assign(state.tau.empty() ? 0 : n, 0.0);
+    M.resize(n * n);
+    if (!state.a.empty()) rnea<double>(model, ws, state.q, state.v, state.a, tau);
+    if (!state.tau.empty()) aba<double>(model, ws, state.q, state.v, state.tau, qdd);
+    crba<double>(model, ws, state.q, M);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j)
+        if (!std::isfinite(M[i * n + j]))
+          throw InputError(fmt::format(
+              "state {}: \"M\"[{}][{}] is not finite ({}): the inputs overflow", s, i, j,
+              M[i * n + j]));
+    check_finite(qdd, s, "qdd");
+    check_finite(tau, s, "tau");
+    // the keys in nlohmann::json's order: M, qdd, tau
+    put(out, fmt::format("{}\n    {{\n      \"M\": [", s == 0 ? "" : ","));
+    for (std::size_t i = 0; i < n; ++i)
+      put(out, fmt::format("{}\n        {}", i == 0 ? "" : ",",
+                           array_text(std::vector<double>(&M[i * n], &M[i * n] + n), 8)));
+    put(out, "\n      ]");
+    if (!qdd.empty()) put(out, ",\n      \"qdd\": " + array_text(qdd, 6));
+    if (!tau.empty()) put(out, ",\n      \"tau\": " + array_text(tau, 6));
+    put(out, "\n    }");
+  }
+  put(out, states.empty() ? "]\n}\n" : "\n  ]\n}\n");
+  if (std::fflush(out) != 0 || std::ferror(out))
+    throw FileError(fmt::format("cannot write the results to standard output: {}",
+                                std::strerror(errno)));
 }
 
 }  // namespace dyngen::gen

@@ -1,24 +1,39 @@
 // dyngen eval: the runtime's RNEA, CRBA and ABA at states given as JSON, so that a user can
-// check a model against other software without writing code.
+// check a model against other software without writing code. The results are written as they
+// are computed, so that a million states or a large robot's mass matrix need no JSON tree.
 #pragma once
 
+#include <cstdio>
+#include <istream>
 #include <string>
-
-#include <nlohmann/json.hpp>
+#include <vector>
 
 #include "dyngen/model.hpp"
 
 namespace dyngen::gen {
 
-/// Reads and parses a JSON file ("-": standard input); InputError names the file and the
-/// position of a syntax error.
-nlohmann::json read_states(const std::string& path);
+/// One state: q, v, and a and/or tau (an absent field is empty).
+struct EvalState {
+  std::vector<double> q, v, a, tau;
+};
 
-/// states: an array of {"q": [nq], "v": [nv], "a": [nv]} and/or "tau": [nv]. Returns
-/// {"joints": names of the v entries, "nq", "nv", "results": [{"tau" (RNEA, when a is given),
-/// "M" (CRBA, rows), "qdd" (ABA, when tau is given)}]}. Throws InputError naming the state and
-/// the field that is missing, of the wrong length, not a number, or (for a free joint's
-/// quaternion) not of unit length within 1e-6.
-nlohmann::json evaluate(const Model<double>& model, const nlohmann::json& states);
+/// The states of a JSON array of {"q": [nq], "v": [nv], "a": [nv]} and/or "tau": [nv], read from
+/// `in` (`name` in messages) one at a time, so that only their numbers are held. Throws
+/// InputError naming the position of a syntax error, or the state and the field that is
+/// missing, of the wrong length, not a number, or (for a free joint's quaternion) not of unit
+/// length within 1e-6; and when a state gives tau but ABA is undefined for the model.
+std::vector<EvalState> read_states(const Model<double>& model, std::istream& in,
+                                   const std::string& name);
+
+/// The same from a file ("-": standard input).
+std::vector<EvalState> read_states(const Model<double>& model, const std::string& path);
+
+/// Writes {"joints": names of the v entries, "nq", "nv", "results": [{"M" (CRBA, rows), "qdd"
+/// (ABA, when tau is given), "tau" (RNEA, when a is given)}]} to `out`, as nlohmann::json's
+/// dump(2) would, one result at a time as it is computed. Throws InputError naming the state and
+/// the output that is not finite (before writing that state's results), and FileError when
+/// `out` (standard output) cannot be written.
+void write_results(const Model<double>& model, const std::vector<EvalState>& states,
+                   std::FILE* out);
 
 }  // namespace dyngen::gen

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <limits>
 #include <map>
 
 #include <fmt/format.h>
@@ -21,6 +22,17 @@ std::string identifier(const std::string& name) {
 }
 
 namespace {
+
+/// The steps CRBA takes carrying columns of M to the base: each joint's nv times its depth.
+long long crba_column_steps(const Model<double>& model) {
+  std::vector<long long> depth(model.nbodies, 0);
+  long long steps = 0;
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (model.parent[i] >= 0) depth[i] = depth[model.parent[i]] + 1;
+    steps += joint_nv(model.joint_type[i]) * depth[i];
+  }
+  return steps;
+}
 
 std::string upper(std::string s) {
   for (char& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
@@ -125,6 +137,10 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   Generated result;
   const bool with_aba = std::find(options.algorithms.begin(), options.algorithms.end(),
                                   Algorithm::Aba) != options.algorithms.end();
+  const auto step = [&](const std::string& text) {
+    if (options.progress) options.progress(text);
+  };
+  step("estimating the conditioning");
   result.conditioning =
       numerics::estimate_conditioning(model, options.conditioning_samples, 1, with_aba);
   result.conditioning_text = conditioning_text(result.conditioning, with_aba);
@@ -132,13 +148,26 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
       precision_warnings(result.conditioning, with_aba, std::is_same_v<T, float>);
   std::string declarations, definitions, cases;
   for (const Algorithm algorithm : options.algorithms) {
-    const Program<T> program = trace<T>(algorithm, model, true);
-    const OpCounts generated = count_ops(program);
+    const std::string a = algorithm_name(algorithm);
+    step(fmt::format("tracing {} ({})", a, scalar));
+    // the runtime's count first, so that its unsimplified trace is gone before the other's
     const OpCounts runtime = count_ops(trace<T>(algorithm, model, false), false);
+    const Program<T> program = trace<T>(algorithm, model, true);
+    if (const int id = first_non_finite_constant(program); id >= 0) {
+      const Node<T>& node = program.graph.nodes[id];
+      throw InputError(fmt::format(
+          "{}: {} overflows in {}: it computes {} from the model's constants alone, {} ({}); the "
+          "robot's masses, lengths, inertias or gravity are too large or too small for {}{}",
+          robot.path, a, scalar, node.value,
+          node.body < 0 ? std::string("before the first link")
+                        : fmt::format("at link '{}'", model.body_name[node.body]),
+          pass_name(node.pass), scalar,
+          std::is_same_v<T, float> ? " (generate double: --scalar double)" : ""));
+    }
+    const OpCounts generated = count_ops(program);
     const EmittedCode code = emit_code(program, model, options.structure);
     result.counts.push_back({algorithm, generated, runtime, code.sections, code.shared_sections,
                              code.shared_functions});
-    const std::string a = algorithm_name(algorithm);
     declarations += fill(a + ".hpp.in", {{"scalar", scalar}}) + "\n";
     if (!code.helpers.empty()) definitions += "\n" + code.helpers;
     definitions += fill(a + ".cpp.in", {{"scalar", scalar},
@@ -215,9 +244,12 @@ std::string snap_text(const SnapReport& s) {
 std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
   std::string text = fmt::format(
       "Conditioning over {} sampled states (docs/numerics.md):\n"
-      "  cond(M) median {:.2g}, max {:.2g}: a relative change of tau or M can change qdd up to "
+      "  cond(M) median {:.2g}, max {:.2g}{}: a relative change of tau or M can change qdd up to "
       "that many times",
-      c.samples, c.cond_M_median, c.cond_M_max);
+      c.samples, c.cond_M_median, c.cond_M_max,
+      c.cond_M_lower_bound ? fmt::format(" or more (power iterations, as nv > {})",
+                                         numerics::dense_conditioning_limit)
+                           : "");
   if (with_aba && !(c.pivot_min > 0)) {
     text += fmt::format(
         "\n  smallest ABA pivot D/max|IA| {:.2g} (joint '{}') is not positive: ABA divides by "
@@ -239,6 +271,30 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
 }
 
 Generated generate(const Robot& robot, const GenerateOptions& options) {
+  const auto requested = [&](Algorithm a) {
+    return std::find(options.algorithms.begin(), options.algorithms.end(), a) !=
+           options.algorithms.end();
+  };
+  if (requested(Algorithm::Crba)) {
+    const long long steps = crba_column_steps(robot.model);
+    if (steps > max_crba_column_steps)
+      throw InputError(fmt::format(
+          "{}: CRBA for this robot would carry columns of M {} steps up the tree (nv times "
+          "depth), above dyngen's limit of {}: its code would take minutes and gigabytes to "
+          "generate and be too large to compile. Leave CRBA out (--algorithms rnea,aba).",
+          robot.path, steps, max_crba_column_steps));
+  }
+  if (options.single_precision) {
+    try {
+      check_model_numbers(robot.model, std::numeric_limits<float>::max());
+    } catch (const ModelError& e) {
+      throw InputError(fmt::format("{}: in float, {} (float's largest number): generate double "
+                                   "(--scalar double)",
+                                   robot.path, e.what()));
+    }
+  }
+  if (requested(Algorithm::Aba) && options.progress)
+    options.progress("checking that ABA is defined");
   for (const Algorithm a : options.algorithms)
     if (a == Algorithm::Aba) {
       const std::vector<int> joints = joints_blocking_aba(robot.model);

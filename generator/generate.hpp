@@ -1,6 +1,7 @@
 // From a loaded robot to the text of every emitted file, and writing them out.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,7 +22,13 @@ struct GenerateOptions {
   Structure structure = Structure::Shared;
   std::string options_text;             // the options as given, for the banner
   int conditioning_samples = 16;        // sampled states of the conditioning estimate
+  std::function<void(const std::string&)> progress;  // told of each step as it starts, if set
 };
+
+/// CRBA carries each column of M up to the base, so its work and code grow with the sum over
+/// joints of nv times depth (nv^2 / 2 for a chain): generation refuses CRBA above this many
+/// such steps, a chain of 500 links, which takes about 20 s, 1 GB and writes 75 MB of code.
+inline constexpr long long max_crba_column_steps = 125000;
 
 struct FunctionCounts {
   Algorithm algorithm;
@@ -54,7 +61,9 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba);
 
 
 /// Traces, simplifies and prints every requested algorithm. Throws InputError when ABA is
-/// requested for a robot with a joint that moves no mass.
+/// requested for a robot with a joint that moves no mass, CRBA for one above
+/// max_crba_column_steps, float code for constants beyond float's range, and when a number the
+/// trace computes from the model's constants alone overflows.
 Generated generate(const Robot& robot, const GenerateOptions& options);
 
 }  // namespace dyngen::gen

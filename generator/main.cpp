@@ -200,7 +200,7 @@ int eval_main(int argc, char** argv) {
   return run_reporting_errors("dyngen eval", [&] {
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
-    fmt::print("{}\n", evaluate(robot.model, read_states(states)).dump(2));
+    write_results(robot.model, read_states(robot.model, states), stdout);
   });
 }
 
@@ -315,8 +315,12 @@ int main(int argc, char** argv) {
       fmt::print("robot '{}': {} degrees of freedom in {} bodies", robot.name, robot.model.nv,
                  robot.model.nbodies);
       if (!robot.locked.empty()) fmt::print(", {} joints locked", robot.locked.size());
-      fmt::print("\ntracing {} ({}) ...\n", algorithm_list, scalar);
-      std::fflush(stdout);
+      fmt::print("\n");
+      // each step as it starts: a big robot takes seconds per step
+      options.progress = [](const std::string& step) {
+        fmt::print("{} ...\n", step);
+        std::fflush(stdout);
+      };
     }
     const Generated generated = generate(robot, options);
     write_package(output, generated.files, force);

@@ -58,18 +58,46 @@ void check_no_loop(const std::string& path, const tinyxml2::XMLElement* robot) {
             .second)
       children.emplace_back(child->Attribute("link"));
   }
+  // Each link's way up is walked once (a walk per link would take quadratic time on a long
+  // chain): it ends at a root, leads into a loop, or is on one. The first link in document order
+  // that is on a loop is reported.
+  enum class Way { Unknown, ToRoot, IntoLoop, OnLoop };
+  std::map<std::string, Way> way;
   for (const std::string& start : children) {
-    std::string joints, link = start;
-    for (std::size_t step = 0; step < up.size(); ++step) {
-      const auto it = up.find(link);
-      if (it == up.end()) break;
-      joints += (joints.empty() ? "'" : ", '") + it->second.first + "'";
-      link = it->second.second;
-      if (link == start)
-        throw InputError(fmt::format(
-            "{}: joints {} form a loop (link '{}' is its own ancestor); a URDF must be a tree",
-            path, joints, start));
+    if (way[start] == Way::Unknown) {
+      std::vector<std::string> walked;
+      std::map<std::string, std::size_t> step;
+      Way end = Way::ToRoot;
+      for (std::string link = start;;) {
+        step.emplace(link, walked.size());
+        walked.push_back(link);
+        const auto it = up.find(link);
+        if (it == up.end()) break;
+        link = it->second.second;
+        const auto known = way.find(link);
+        if (known != way.end() && known->second != Way::Unknown) {
+          end = known->second == Way::ToRoot ? Way::ToRoot : Way::IntoLoop;
+          break;
+        }
+        if (const auto again = step.find(link); again != step.end()) {
+          for (std::size_t k = again->second; k < walked.size(); ++k) way[walked[k]] = Way::OnLoop;
+          walked.resize(again->second);
+          end = Way::IntoLoop;
+          break;
+        }
+      }
+      for (const std::string& link : walked) way[link] = end;
     }
+    if (way[start] != Way::OnLoop) continue;
+    std::string joints, link = start;
+    do {
+      const auto& [joint, parent] = up.at(link);
+      joints += (joints.empty() ? "'" : ", '") + joint + "'";
+      link = parent;
+    } while (link != start);
+    throw InputError(fmt::format(
+        "{}: joints {} form a loop (link '{}' is its own ancestor); a URDF must be a tree", path,
+        joints, start));
   }
 }
 
@@ -162,7 +190,7 @@ RobotDescription parse_urdf(const std::string& path, const std::string& xml) {
         throw InputError(fmt::format("{}: joint '{}': unknown joint type", path, joint->name));
     }
     const bool has_axis = spec.kind != JointKind::Fixed && spec.kind != JointKind::Floating;
-    const double norm = std::sqrt(dot(spec.axis, spec.axis));
+    const double norm = scaled_length(spec.axis);
     if (has_axis && norm > 0 && std::abs(norm - 1) > 1e-6)
       robot.warnings.push_back(fmt::format(
           "{}: joint '{}': axis ({} {} {}) has length {:.6g}; it is normalised", path, joint->name,

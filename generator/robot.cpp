@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -14,7 +15,6 @@
 #include <openssl/evp.h>
 
 #include "dyngen/aba.hpp"
-#include "dyngen/crba.hpp"
 #include "dyngen/numerics/conditioning.hpp"
 
 namespace dyngen::gen {
@@ -88,7 +88,7 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
   // angles from raw mt19937_64 bits: the same samples on every standard library
   std::mt19937_64 rng(20261121);
   auto angle = [&rng] { return -3.14159 + 6.28318 * static_cast<double>(rng() >> 11) * 0x1.0p-53; };
-  std::vector<double> q(model.nq), v(n, 0.0), tau(n, 0.0), qdd(n), M(n * n);
+  std::vector<double> q(model.nq), v(n, 0.0), tau(n, 0.0), qdd(n);
   std::vector<bool> flagged(model.nbodies, false);
   for (int sample = 0; sample < 16; ++sample) {
     for (double& x : q) x = sample == 0 ? 0.0 : angle();
@@ -97,8 +97,13 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
         double* quaternion = &q[model.q_index[i] + 3];
         quaternion[0] = 1, quaternion[1] = quaternion[2] = quaternion[3] = 0;
       }
-    crba<double>(model, ws, q, M);
     aba<double>(model, ws, q, v, tau, qdd);
+    // the composite inertias of CRBA (with ABA's joint transforms) give M's diagonal in O(nv),
+    // where M itself takes O(nv^2) memory and up to O(nv^2) time
+    for (int i = 0; i < model.nbodies; ++i) ws.Ic[i] = model.I[i];
+    for (int i = model.nbodies - 1; i >= 0; --i)
+      if (model.parent[i] >= 0)
+        ws.Ic[model.parent[i]] = ws.Ic[model.parent[i]] + apply_inertia_T(ws.Xup[i], ws.Ic[i]);
     for (int i = 0; i < model.nbodies; ++i) {
       if (model.joint_type[i] == JointType::Free) {
         // ABA solves with the whole 6x6 articulated inertia: singular when the subtree can move
@@ -108,10 +113,13 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
           flagged[i] = true;
         continue;
       }
-      const int k = model.v_index[i];
-      const double Mii = M[k * n + k];
-      // a NaN D comes from a division by a vanishing D below, which is flagged itself
-      if (!std::isnan(ws.D[i]) && !(ws.D[i] > 1e-12 * Mii)) flagged[i] = true;
+      double Mii;
+      joint_project(model, i, mul(ws.Ic[i], joint_column(model, i, 0)), &Mii);
+      // a NaN D comes from a division by a vanishing D below, which is flagged itself; a D below
+      // double's normal range is as good as zero (1 / D overflows)
+      if (!std::isnan(ws.D[i]) &&
+          !(ws.D[i] > 1e-12 * Mii && ws.D[i] >= std::numeric_limits<double>::min()))
+        flagged[i] = true;
     }
   }
   std::vector<int> joints;
@@ -234,6 +242,23 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
         path));
   }
 
+  const std::size_t joints = description.builder.joints().size();
+  const std::size_t links = description.builder.links().size();
+  if (joints > max_joints)
+    throw InputError(fmt::format("{}: the robot has {} joints; dyngen reads at most {}", path,
+                                 joints, max_joints));
+  if (links > max_joints + 1)
+    throw InputError(fmt::format("{}: the robot has {} links; dyngen reads at most {} (a tree of "
+                                 "{} joints)",
+                                 path, links, max_joints + 1, max_joints));
+  if (options.gravity) {
+    try {
+      check_gravity(*options.gravity);
+    } catch (const ModelError& e) {
+      throw InputError(fmt::format("--gravity: {}", e.what()));
+    }
+  }
+
   Robot robot;
   robot.path = path;
   robot.name = description.name;
@@ -267,6 +292,10 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
   }
   if (robot.model.nbodies == 0)
     throw InputError(fmt::format("{}: the robot has no moving joint", path));
+  if (robot.model.nv > max_nv)
+    throw InputError(fmt::format(
+        "{}: the robot has {} degrees of freedom; dyngen handles at most {}", path,
+        robot.model.nv, max_nv));
   check_mimics(robot, description.mimics, options.mimic_independent);
   if (options.snap) robot.snapped = snap(robot.model, *options.snap);
   return robot;

@@ -60,6 +60,11 @@ struct Robot {
 
 inline constexpr Vec3<double> default_gravity{0, 0, -9.81};
 
+/// The largest robot dyngen takes (README, "Limits"): joints in the file (and links, one more),
+/// and degrees of freedom (entries of v). Generating RNEA or ABA for a chain of 10,000 links takes
+/// 10 to 30 s and up to 1.4 GB; eval's mass matrix alone is then 800 MB.
+inline constexpr int max_joints = 10000, max_nv = 10000;
+
 /// Reads a URDF (.urdf, .xml) or a chain spec (.yaml, .yml) and builds its model.
 Robot load_robot(const std::string& path, const LoadOptions& options = {});
 

@@ -1,5 +1,6 @@
 #include "trace.hpp"
 
+#include <cmath>
 #include <span>
 
 #include "dyngen/aba.hpp"
@@ -45,7 +46,7 @@ Program<T> trace(Algorithm algorithm, const Model<double>& model, bool simplify)
     }
     case Algorithm::Crba: {
       const auto q = inputs("q", model.nq);
-      out.resize(n * n);
+      out.resize(static_cast<std::size_t>(n) * n);
       crba<Sym<T>>(m, ws, q, out);
       program.output_array = "M";
       break;
@@ -63,6 +64,23 @@ Program<T> trace(Algorithm algorithm, const Model<double>& model, bool simplify)
   return program;
 }
 
+template <class T>
+int first_non_finite_constant(const Program<T>& program) {
+  const auto& nodes = program.graph.nodes;
+  std::vector<bool> live(nodes.size(), false);
+  for (const int id : program.outputs) live[id] = true;
+  int first = -1;
+  for (int id = static_cast<int>(nodes.size()) - 1; id >= 0; --id) {
+    if (!live[id]) continue;
+    if (nodes[id].op == Op::Const && !std::isfinite(nodes[id].value)) first = id;
+    if (nodes[id].a >= 0) live[nodes[id].a] = true;
+    if (nodes[id].b >= 0) live[nodes[id].b] = true;
+  }
+  return first;
+}
+
+template int first_non_finite_constant<double>(const Program<double>&);
+template int first_non_finite_constant<float>(const Program<float>&);
 template Program<double> trace<double>(Algorithm, const Model<double>&, bool);
 template Program<float> trace<float>(Algorithm, const Model<double>&, bool);
 

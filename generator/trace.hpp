@@ -24,6 +24,12 @@ struct Program {
   std::vector<int> outputs;  // node stored in output_array[k]
 };
 
+/// The first constant that an output depends on and that is not finite, or -1. The trace computes
+/// with constants what it can (constant folding, the same operations as the runtime's), so such
+/// a constant is a number that overflows at every state: the model's numbers are out of T's range.
+template <class T>
+int first_non_finite_constant(const Program<T>& program);
+
 /// Traces `algorithm` on the model converted to T. With simplify = false the graph holds
 /// every operation the runtime performs for the same call, for counting.
 template <class T>

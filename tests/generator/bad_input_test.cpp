@@ -128,6 +128,20 @@ const std::vector<Case> bad_robots = {
       "Give link 'rail' a mass", "leave out --floating-base", "--algorithms rnea,crba"}},
     {"AbaOnMasslessFloatingArm", bad + "/floating_massless_arm.urdf", {"--floating-base"},
      {"ABA is undefined", "free joint 'floating_base' is singular", "--algorithms rnea,crba"}},
+    // model constants that the algorithms cannot compute with: one check after building
+    {"HugeMassUrdf", bad + "/huge_mass.urdf", {},
+     {"link 'arm': the mass 1e+308 kg exceeds 1e+50 in magnitude"}},
+    {"FarCentreOfMassUrdf", bad + "/far_com.urdf", {},
+     {"link 'arm': the first moment (mass times centre of mass) (1e+200, 0, 0) kg m exceeds "
+      "1e+50"}},
+    {"SubnormalMassUrdf", bad + "/subnormal_mass.urdf", {},
+     {"link 'arm': the mass 9.99989e-321 kg is subnormal"}},
+    {"ChainSubnormalMass", bad + "/subnormal_mass.yaml", {},
+     {"link 'link1': the mass 9.99989e-321 kg is subnormal"}},
+    {"ChainHugeGravity", bad + "/huge_gravity.yaml", {},
+     {"gravity (0, 0, -1e+308) m/s^2 exceeds 1e+50 in magnitude"}},
+    {"ChainSubnormalPivot", bad + "/subnormal_pivot.yaml", {},
+     {"ABA is undefined", "1 joint moves no mass", "'link1_joint'"}},
 };
 
 /// Options that only the command line parses.
@@ -155,6 +169,14 @@ const std::vector<Case> bad_options = {
      {"--snap: 0.5 is not between 0 and 0.001"}},
     {"GravityAndNoGravity", models + "/ur5.urdf", {"--gravity", "0,0,1", "--no-gravity"},
      {"--gravity excludes --no-gravity"}},
+    {"GravityOverflowing", models + "/ur5.urdf", {"--gravity", "0,0,1e308"},
+     {"--gravity: gravity (0, 0, 1e+308) m/s^2 exceeds 1e+50 in magnitude"}},
+    {"ConstantBeyondFloat", bad + "/huge_for_float.yaml", {"--scalar", "float"},
+     {"huge_for_float.yaml: in float, link 'link1': the mass 1e+39 kg exceeds 3.40282e+38",
+      "--scalar double"}},
+    {"FloatOverflowInTheTrace", bad + "/float_overflow.yaml", {"--scalar", "float"},
+     {"float_overflow.yaml: aba overflows in float: it computes inf from the model's constants",
+      "at link 'link1' (acceleration pass)", "--scalar double"}},
 };
 
 // Command-line mistakes are errors like bad input: `dyngen: error:` and exit status 1 (CLI11's
@@ -366,6 +388,22 @@ TEST(Warnings, CleanRobotHasNone) {
 }
 
 using WarningsCommand = Scratch;
+
+// An axis is a direction: one of any finite length is normalised (with a warning), not only one
+// whose squared length is a normal number.
+TEST_F(WarningsCommand, AxesOfAnyFiniteLengthAreDirections) {
+  for (const std::string axis : {"1e300 0 0", "1e200 1e200 0", "1e-200 0 0", "0 -1e-310 0"}) {
+    std::string text = read(bad + "/zero_axis.urdf");
+    text.replace(text.find("<axis xyz=\"0 0 0\"/>"), 20, "<axis xyz=\"" + axis + "\"/>");
+    const fs::path robot = dir / "axis.urdf";
+    std::ofstream(robot) << text;
+    const CliResult r = run_dyngen({robot.string(), "-q", "-o", (dir / "out").string()}, dir);
+    EXPECT_EQ(r.status, 0) << axis << ": " << r.err;
+    EXPECT_NE(r.err.find("joint 'shoulder': axis ("), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("it is normalised"), std::string::npos) << r.err;
+    fs::remove_all(dir / "out");
+  }
+}
 
 TEST_F(WarningsCommand, PrintedOnStderrEvenWhenQuietAndOutputWritten) {
   const CliResult r =

@@ -2,12 +2,22 @@
 // other through the JSON layer (RNEA's tau fed back as ABA's tau gives a back; M a + bias =
 // tau), so a field in the wrong place or a number that does not round-trip fails.
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include <sys/resource.h>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include "dyngen/aba.hpp"
+#include "dyngen/crba.hpp"
+#include "dyngen/rnea.hpp"
 
 #include "eval.hpp"
 #include "files.hpp"
@@ -22,6 +32,30 @@ using dyngen::test::independent_mimics;
 using dyngen::test::floating_base;
 
 const std::string models = DYNGEN_TEST_MODELS;
+
+/// What dyngen eval writes for the states, as text: read_states and write_results in memory.
+std::string eval_text(const dyngen::Model<double>& model, const json& states) {
+  std::istringstream in(states.dump());
+  const std::vector<EvalState> read = read_states(model, in, "<test>");
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  std::FILE* out = open_memstream(&buffer, &size);
+  std::string error;
+  try {
+    write_results(model, read, out);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  std::fclose(out);
+  const std::string text(buffer, size);
+  std::free(buffer);
+  if (!error.empty()) throw InputError(error);
+  return text;
+}
+
+json evaluate(const dyngen::Model<double>& model, const json& states) {
+  return json::parse(eval_text(model, states));
+}
 
 Eigen::VectorXd vec(const json& x) {
   Eigen::VectorXd v(x.size());
@@ -143,7 +177,128 @@ TEST(Eval, BadStatesNameTheStateAndField) {
             std::string::npos);
 }
 
+// The results are written one state at a time, as the whole tree's dump(2) was: the same text,
+// here against a tree built from the runtime's own results.
+TEST(Eval, WritesTheResultsAsTheirJsonTreeWouldBePrinted) {
+  const dyngen::Model<double> model = load_robot(models + "/ur5.urdf").model;
+  json states = json::array({state(model, 0, "a"), state(model, 1, "tau"), state(model, 2, "a")});
+  states[2]["tau"] = states[1]["tau"];
+  states.push_back({{"q", states[0]["q"]}});
+  json results = json::array();
+  dyngen::Workspace<double> ws(model);
+  for (const json& s : states) {
+    const std::vector<double> q = s["q"];
+    std::vector<double> M(36), out(6);
+    json r = json::object();
+    dyngen::crba<double>(model, ws, q, M);
+    for (int i = 0; i < 6; ++i) r["M"].push_back(std::vector<double>(&M[6 * i], &M[6 * i + 6]));
+    if (s.contains("a")) {
+      dyngen::rnea<double>(model, ws, q, s["v"].get<std::vector<double>>(),
+                           s["a"].get<std::vector<double>>(), out);
+      r["tau"] = out;
+    }
+    if (s.contains("tau")) {
+      dyngen::aba<double>(model, ws, q, s["v"].get<std::vector<double>>(),
+                          s["tau"].get<std::vector<double>>(), out);
+      r["qdd"] = out;
+    }
+    results.push_back(r);
+  }
+  const json tree = {{"joints", dyngen::velocity_names(model)},
+                     {"nq", 6},
+                     {"nv", 6},
+                     {"results", results}};
+  EXPECT_EQ(eval_text(model, states), tree.dump(2) + "\n");
+  const json empty = {{"joints", dyngen::velocity_names(model)},
+                      {"nq", 6},
+                      {"nv", 6},
+                      {"results", json::array()}};
+  EXPECT_EQ(eval_text(model, json::array()), empty.dump(2) + "\n");
+}
+
 using EvalCommand = dyngen::test::ScratchTest;
+
+/// A pendulum whose moment of inertia about its joint is 10 kg m^2 (1 kg, 0.1 m out, izz 9.99):
+/// tau = 10 a without gravity, so a = 1e308 overflows tau, and qdd = tau / 10 never does.
+const char* heavy_pendulum = R"(name: heavy_pendulum
+gravity: [0, 0, 0]
+links:
+  - mass: 1
+    com: [0.1, 0, 0]
+    inertia: {ixx: 1, iyy: 9.99, izz: 9.99}
+)";
+
+TEST_F(EvalCommand, AnOutputThatOverflowsIsAnErrorNamingTheStateAndOutput) {
+  const std::string spec = (dir / "pendulum.yaml").string();
+  std::ofstream(spec) << heavy_pendulum;
+  const json states = json::array({{{"q", {0}}, {"v", {0}}, {"a", {1}}},
+                                   {{"q", {0}}, {"v", {0}}, {"a", {1e308}}}});
+  const auto r = run_dyngen({"eval", spec, "--states", "-"}, dir, states.dump());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("dyngen eval: error: state 1: \"tau\"[0] is not finite (inf): the "
+                       "inputs overflow"),
+            std::string::npos)
+      << r.err;
+  // state 0 came out whole before the error; nothing of state 1 did
+  EXPECT_NE(r.out.find("10.0"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("null"), std::string::npos) << r.out;
+}
+
+// A prismatic joint stretched to 1e300 m carries the last link's mass 1e300 m from the first
+// joint, whose entry of M, m r^2, overflows.
+const char* stretched_arm = R"(name: stretched_arm
+links:
+  - {mass: 1, com: [0.1, 0, 0], inertia: {ixx: 0.1, iyy: 0.1, izz: 0.1}}
+  - {mass: 1, com: [0.1, 0, 0], inertia: {ixx: 0.1, iyy: 0.1, izz: 0.1},
+     joint: {type: prismatic, axis: [1, 0, 0]}}
+  - {mass: 1, com: [0.1, 0, 0], inertia: {ixx: 0.1, iyy: 0.1, izz: 0.1}}
+)";
+
+TEST_F(EvalCommand, AMassMatrixThatOverflowsNamesItsEntry) {
+  const std::string spec = (dir / "arm.yaml").string();
+  std::ofstream(spec) << stretched_arm;
+  const auto r = run_dyngen({"eval", spec, "--states", "-"}, dir, R"([{"q": [0, 1e300, 0]}])");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err.find("dyngen eval: error: state 0: \"M\"[0][0] is not finite ("), 0u) << r.err;
+  EXPECT_NE(r.err.find("): the inputs overflow\n"), std::string::npos) << r.err;
+}
+
+TEST_F(EvalCommand, StandardOutputThatCannotBeWrittenIsAnError) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const std::string command = dyngen::test::shell_quoted(DYNGEN_EXECUTABLE) + " eval " +
+                              dyngen::test::shell_quoted(models + "/planar5.yaml") +
+                              " --states - >/dev/full 2>" +
+                              dyngen::test::shell_quoted((dir / "err.txt").string());
+  const std::string states = "[{\"q\": [0, 0, 0, 0, 0]}]";
+  FILE* in = popen(command.c_str(), "w");
+  ASSERT_NE(in, nullptr);
+  std::fputs(states.c_str(), in);
+  const int raw = pclose(in);
+  ASSERT_TRUE(WIFEXITED(raw));
+  EXPECT_EQ(WEXITSTATUS(raw), 1);
+  const std::string err = dyngen::test::read(dir / "err.txt");
+  EXPECT_NE(err.find("dyngen eval: error: cannot write the results to standard output: No space "
+                     "left on device"),
+            std::string::npos)
+      << err;
+}
+
+// 200,000 states: neither their results nor the input's JSON tree are held (both took 470 MB),
+// only the states' numbers (10 MB here).
+TEST_F(EvalCommand, ManyStatesTakeLittleMemory) {
+  json states = json::array();
+  for (int k = 0; k < 200000; ++k)
+    states.push_back({{"q", {0.001 * k, 0.2}}, {"v", {0.3, 0.4}}, {"a", {0.5, 0.6}}});
+  const std::string file = (dir / "states.json").string();
+  std::ofstream(file) << states.dump();
+  states = json();
+  const auto r = run_dyngen({"eval", models + "/double_pendulum.urdf", "--states", file}, dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["results"].size(), 200000u);
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  EXPECT_LT(usage.ru_maxrss, 150 * 1024) << "kB, the largest of dyngen's";
+}
 
 TEST_F(EvalCommand, PrintsJsonForStatesOnStdin) {
   const std::vector<double> six(6, 0.1);

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -74,6 +76,99 @@ inline RigidInertia<double> link_inertia(const LinkSpec& link) {
           {Ic.xx + m * (c.y * c.y + c.z * c.z), Ic.yy + m * (c.x * c.x + c.z * c.z),
            Ic.zz + m * (c.x * c.x + c.y * c.y), Ic.xy - m * c.x * c.y, Ic.xz - m * c.x * c.z,
            Ic.yz - m * c.y * c.z}};
+}
+
+/// |v| without overflow or underflow in its squares: v is first scaled by the power of two
+/// nearest below its largest component, which is exact, so an ordinary vector gets the bits of
+/// sqrt(v.v), and (1e300, 0, 0) or (1e-200, 0, 0) get their length. Not finite if v is not.
+inline double scaled_length(const Vec3<double>& v) {
+  const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  if (largest == 0 || !std::isfinite(largest)) return largest;
+  const int e = std::ilogb(largest);
+  const Vec3<double> s{std::ldexp(v.x, -e), std::ldexp(v.y, -e), std::ldexp(v.z, -e)};
+  return std::ldexp(std::sqrt(dot(s, s)), e);
+}
+
+/// The largest magnitude of a model constant (mass, first moment, inertia, joint offset,
+/// gravity). RNEA, CRBA and ABA multiply up to five of them together (a torque is a moment arm
+/// times a mass times a distance times an acceleration) and sum such products over the robot:
+/// with each constant at most 1e50, and chains of up to 1e5 links, they stay inside double's
+/// range (1.8e308) with room for the states' own numbers.
+inline constexpr double max_model_constant = 1e50;
+
+namespace detail {
+
+inline std::string number_text(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
+/// "what (x, y, z) unit" followed by why the numbers are refused, if they are.
+inline void check_constants(const std::string& what, std::initializer_list<double> xs,
+                            const char* unit, double max_magnitude) {
+  std::string values;
+  bool finite = true, in_range = true;
+  for (const double x : xs) {
+    values += (values.empty() ? "" : ", ") + number_text(x);
+    finite = finite && std::isfinite(x);
+    in_range = in_range && std::abs(x) <= max_magnitude;
+  }
+  if (xs.size() > 1) values = "(" + values + ")";
+  if (*unit) values += std::string(" ") + unit;
+  if (!finite) throw ModelError(what + " " + values + " is not finite");
+  if (!in_range)
+    throw ModelError(what + " " + values + " exceeds " + number_text(max_magnitude) +
+                     " in magnitude, beyond which RNEA, CRBA and ABA can overflow");
+}
+
+/// A mass or moment of inertia, which ABA divides by: zero, or a normal number.
+inline void check_divisor(const std::string& what, double x, const char* unit) {
+  if (x != 0 && std::abs(x) < std::numeric_limits<double>::min())
+    throw ModelError(what + " " + number_text(x) + " " + unit + " is subnormal (below " +
+                     number_text(std::numeric_limits<double>::min()) +
+                     ", double's smallest normal number): products with it lose their digits, "
+                     "and ABA's divisions by it overflow");
+}
+
+}  // namespace detail
+
+/// Throws ModelError when gravity has a component that is not finite or above `max_magnitude`.
+inline void check_gravity(const Vec3<double>& g, double max_magnitude = max_model_constant) {
+  detail::check_constants("gravity", {g.x, g.y, g.z}, "m/s^2", max_magnitude);
+}
+
+/// Throws ModelError naming the body or joint and the field of the first model constant that
+/// the algorithms cannot compute with: one that is not finite or exceeds `max_magnitude`, or a
+/// mass or moment of inertia that is not zero but below double's normal range (ABA divides by
+/// them, and 1 / a subnormal number overflows).
+inline void check_model_numbers(const Model<double>& model,
+                                double max_magnitude = max_model_constant) {
+  check_gravity(model.gravity, max_magnitude);
+  for (int i = 0; i < model.nbodies; ++i) {
+    const std::string link = "link '" + model.body_name[i] + "': ";
+    const std::string joint = "joint '" + model.joint_name[i] + "': ";
+    const RigidInertia<double>& I = model.I[i];
+    const Sym3<double>& J = I.I;
+    const Xform<double>& X = model.X_tree[i];
+    const Vec3<double>& k = model.joint_axis[i];
+    detail::check_constants(link + "the mass", {I.m}, "kg", max_magnitude);
+    detail::check_constants(link + "the first moment (mass times centre of mass)",
+                            {I.h.x, I.h.y, I.h.z}, "kg m", max_magnitude);
+    detail::check_constants(link + "the inertia about the link origin (xx, yy, zz, xy, xz, yz)",
+                            {J.xx, J.yy, J.zz, J.xy, J.xz, J.yz}, "kg m^2", max_magnitude);
+    detail::check_constants(joint + "the origin's position in the parent body",
+                            {X.r.x, X.r.y, X.r.z}, "m", max_magnitude);
+    const Mat3<double>& E = X.E;
+    detail::check_constants(joint + "the origin's rotation",
+                            {E.xx, E.xy, E.xz, E.yx, E.yy, E.yz, E.zx, E.zy, E.zz}, "",
+                            max_magnitude);
+    detail::check_constants(joint + "the axis", {k.x, k.y, k.z}, "", max_magnitude);
+    detail::check_divisor(link + "the mass", I.m, "kg");
+    detail::check_divisor(link + "the moment of inertia xx about the link origin", J.xx, "kg m^2");
+    detail::check_divisor(link + "the moment of inertia yy about the link origin", J.yy, "kg m^2");
+    detail::check_divisor(link + "the moment of inertia zz about the link origin", J.zz, "kg m^2");
+  }
 }
 
 /// The kind of a revolute joint about unit axis k: its own kind only on an exact +-x, +-y, +-z.
@@ -154,19 +249,17 @@ class ModelBuilder {
   void add_joint(const JointSpec& joint) {
     if (!is_rotation(joint.R))
       throw ModelError("joint '" + joint.name + "': the origin rotation is not a rotation matrix");
-    for (const JointSpec& j : joints_)
-      if (j.name == joint.name) throw ModelError("joint '" + joint.name + "' is defined twice");
+    if (!joint_index_.emplace(joint.name, joints_.size()).second)
+      throw ModelError("joint '" + joint.name + "' is defined twice");
     joints_.push_back(joint);
   }
 
   /// Turns a joint into a fixed one, at q = 0.
   void lock(const std::string& joint_name) {
-    for (JointSpec& j : joints_)
-      if (j.name == joint_name) {
-        j.kind = JointKind::Fixed;
-        return;
-      }
-    throw ModelError("cannot lock joint '" + joint_name + "': no joint of that name");
+    const auto it = joint_index_.find(joint_name);
+    if (it == joint_index_.end())
+      throw ModelError("cannot lock joint '" + joint_name + "': no joint of that name");
+    joints_[it->second].kind = JointKind::Fixed;
   }
 
   const std::vector<LinkSpec>& links() const { return links_; }
@@ -195,7 +288,9 @@ class ModelBuilder {
       if (parent_joint[l] < 0) roots.push_back(l);
     if (roots.size() != 1) {
       std::string names;
-      for (int l : roots) names += (names.empty() ? "'" : ", '") + links_[l].name + "'";
+      for (std::size_t k = 0; k < roots.size() && k < 10; ++k)
+        names += (names.empty() ? "'" : ", '") + links_[roots[k]].name + "'";
+      if (roots.size() > 10) names += " and " + std::to_string(roots.size() - 10) + " more";
       throw ModelError(roots.empty() ? "no root link: every link has a parent (the tree has a loop)"
                                      : "more than one root link: " + names);
     }
@@ -207,29 +302,44 @@ class ModelBuilder {
       root_body = add_body(model, -1, identity(), JointType::Free, {0, 0, 0}, "floating_base",
                            links_[roots[0]].name, link_inertia(links_[roots[0]]));
     }
-    const int visited = visit(model, child_joints, roots[0], root_body, identity());
+    const int visited = visit(model, child_joints, roots[0], root_body);
     if (visited != nlinks)
       throw ModelError("some links are not connected to the root link '" + links_[roots[0]].name +
                        "' (the tree has a loop)");
+    check_model_numbers(model);
     return model;
   }
 
  private:
-  // Depth-first from link l, which belongs to body `body` (-1: the fixed base) and whose
-  // frame is X_link_body from the body's. Bodies are numbered in preorder, so parent < child;
-  // links on fixed joints add their inertia to their body. Returns the links visited.
-  int visit(Model<double>& model, const std::vector<std::vector<int>>& child_joints, int l,
-            int body, const Xform<double>& X_link_body) const {
+  // Depth-first from the root link, which belongs to body `root_body` (-1: the fixed base), with
+  // an explicit stack (a chain of many links would overflow the call stack). Bodies are
+  // numbered in preorder, so parent < child; links on fixed joints add their inertia to their
+  // body, in the same order. Returns the links visited.
+  int visit(Model<double>& model, const std::vector<std::vector<int>>& child_joints, int root,
+            int root_body) const {
+    struct Frame {
+      int link, body;
+      Xform<double> X_link_body;  // the link's frame from its body's
+      std::size_t next = 0;       // its next child joint
+    };
+    std::vector<Frame> stack{{root, root_body, identity()}};
     int visited = 1;
-    for (const int j : child_joints[l]) {
-      const JointSpec& joint = joints_[j];
+    while (!stack.empty()) {
+      Frame& top = stack.back();
+      if (top.next == child_joints[top.link].size()) {
+        stack.pop_back();
+        continue;
+      }
+      const JointSpec& joint = joints_[child_joints[top.link][top.next++]];
+      const int body = top.body;
       const int c = link_index_.at(joint.child);
       const Xform<double> X_child_body = compose(Xform<double>{transpose(joint.R), joint.xyz},
-                                                 X_link_body);
+                                                 top.X_link_body);
+      ++visited;
       if (joint.kind == JointKind::Fixed) {
         if (body >= 0)
           model.I[body] = model.I[body] + apply_inertia_T(X_child_body, link_inertia(links_[c]));
-        visited += visit(model, child_joints, c, body, X_child_body);
+        stack.push_back({c, body, X_child_body});
       } else if (joint.kind == JointKind::Planar) {
         const Vec3<double> n = unit_axis(joint);
         const Vec3<double> u = in_plane_direction(n);
@@ -240,7 +350,7 @@ class ModelBuilder {
                                 joint.name + ":w", links_[c].name + ":w", {});
         const int b = add_body(model, bw, identity(), revolute_type(n), n, joint.name + ":rot",
                                links_[c].name, link_inertia(links_[c]));
-        visited += visit(model, child_joints, c, b, identity());
+        stack.push_back({c, b, identity()});
       } else {
         const JointType type = joint.kind == JointKind::Floating  ? JointType::Free
                                : joint.kind == JointKind::Prismatic ? JointType::Prismatic
@@ -249,7 +359,7 @@ class ModelBuilder {
                                                                     : unit_axis(joint);
         const int b = add_body(model, body, X_child_body, type, axis, joint.name, links_[c].name,
                                link_inertia(links_[c]));
-        visited += visit(model, child_joints, c, b, identity());
+        stack.push_back({c, b, identity()});
       }
     }
     return visited;
@@ -294,7 +404,7 @@ class ModelBuilder {
 
   static Vec3<double> unit_axis(const JointSpec& joint) {
     const Vec3<double>& a = joint.axis;
-    const double norm = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    const double norm = scaled_length(a);
     if (!(norm > 0) || !std::isfinite(norm))
       throw ModelError("joint '" + joint.name + "' has a zero or non-finite axis");
     return norm == 1 ? a : Vec3<double>{a.x / norm, a.y / norm, a.z / norm};
@@ -315,6 +425,7 @@ class ModelBuilder {
   std::vector<LinkSpec> links_;
   std::vector<JointSpec> joints_;
   std::map<std::string, int> link_index_;
+  std::map<std::string, std::size_t> joint_index_;
 };
 
 }  // namespace dyngen

@@ -15,14 +15,22 @@
 
 #include "dyngen/aba.hpp"
 #include "dyngen/crba.hpp"
+#include "dyngen/rnea.hpp"
 #include "dyngen/numerics/random.hpp"
 
 namespace dyngen::numerics {
 
 using MatrixL = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
 
+/// Up to this many velocity entries cond(M) is computed from the dense M, O(nv^3) in long double
+/// (about 0.3 s per sample at 200); above it, by power iterations with RNEA (M x) and ABA
+/// (M^-1 x), O(nv) each, at no more than `large_robot_samples` states.
+inline constexpr int dense_conditioning_limit = 200;
+inline constexpr int large_robot_samples = 4;
+
 struct Conditioning {
   int samples = 0;
+  bool cond_M_lower_bound = false;  // cond(M) from power iterations, which approach it from below
   double cond_M_median = 0;  // lambda_max / lambda_min of M(q), median over the samples
   double cond_M_max = 0;     // ... largest
   double pivot_min = 1;      // smallest D_i / max|IA_i| over joints and samples (ABA); for a
@@ -96,6 +104,30 @@ S smallest_eigenvalue(const ArticulatedInertia<S>& A) {
       .minCoeff();
 }
 
+/// The largest eigenvalue of the symmetric positive definite operator y = A x (apply(x, y)), by
+/// power iterations from x: Rayleigh quotients, which approach it from below. Stops when one
+/// changes by less than 1e-3 relative, or after 60; +inf when A x is not finite.
+template <class Apply>
+long double largest_eigenvalue(Apply apply, std::vector<long double> x) {
+  std::vector<long double> y(x.size());
+  long double lambda = 0;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    long double norm = 0;
+    for (const long double xi : x) norm += xi * xi;
+    norm = std::sqrt(norm);
+    for (long double& xi : x) xi /= norm;
+    apply(x, y);
+    long double quotient = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) quotient += x[k] * y[k];
+    if (!std::isfinite(quotient)) return std::numeric_limits<long double>::infinity();
+    const bool converged = std::abs(quotient - lambda) <= 1e-3L * std::abs(quotient);
+    lambda = quotient;
+    if (converged) break;
+    x.swap(y);
+  }
+  return lambda;
+}
+
 inline int count_float_unrepresentable(const Model<double>& model) {
   int count = 0;
   const auto check = [&](double x) {
@@ -117,27 +149,61 @@ inline int count_float_unrepresentable(const Model<double>& model) {
 
 }  // namespace detail
 
+/// cond_2(M(q)) = lambda_max(M) lambda_max(M^-1) from power iterations, M x by RNEA and M^-1 x
+/// by ABA without gravity and velocity (ml0): O(nv) per iteration, no nv x nv matrix. A lower
+/// bound; +inf when ABA divides by zero (M is singular).
+inline double condition_number_by_iteration(const Model<long double>& ml0,
+                                            Workspace<long double>& ws,
+                                            const std::vector<long double>& q, Random& rng) {
+  const std::size_t n = static_cast<std::size_t>(ml0.nv);
+  const std::vector<long double> zero(n, 0.0L);
+  std::vector<long double> start(n);
+  for (long double& x : start) x = rng.uniform(-1, 1);
+  const long double largest = detail::largest_eigenvalue(
+      [&](const std::vector<long double>& x, std::vector<long double>& y) {
+        rnea<long double>(ml0, ws, q, zero, x, y);
+      },
+      start);
+  const long double inverse_largest = detail::largest_eigenvalue(
+      [&](const std::vector<long double>& x, std::vector<long double>& y) {
+        aba<long double>(ml0, ws, q, zero, x, y);
+      },
+      start);
+  const long double cond = largest * inverse_largest;
+  return std::isfinite(cond) && cond > 0 ? static_cast<double>(cond)
+                                         : std::numeric_limits<double>::infinity();
+}
+
 /// Samples `samples` random states (random_state with `seed`) and measures the model's
-/// conditioning at each. ABA's pivots are measured only if `with_aba` (ABA is undefined when a
-/// joint moves no inertia).
+/// conditioning at each; above dense_conditioning_limit velocity entries, at no more than
+/// large_robot_samples states and with cond(M) from power iterations. ABA's pivots are measured
+/// only if `with_aba` (ABA is undefined when a joint moves no inertia).
 inline Conditioning estimate_conditioning(const Model<double>& model, int samples,
                                           std::uint64_t seed, bool with_aba = true) {
   Conditioning c;
-  c.samples = samples;
+  c.cond_M_lower_bound = model.nv > dense_conditioning_limit;
+  c.samples = c.cond_M_lower_bound ? std::min(samples, large_robot_samples) : samples;
   c.float_unrepresentable = detail::count_float_unrepresentable(model);
   const Model<long double> ml = model.cast<long double>();
+  Model<long double> ml0 = ml;
+  ml0.gravity = {};
   Workspace<long double> ws(ml);
   Random rng(seed);
   std::vector<double> conds;
   long double inertia_max = 0, inertia_min = std::numeric_limits<long double>::infinity();
-  for (int s = 0; s < samples; ++s) {
+  for (int s = 0; s < c.samples; ++s) {
     const State state = random_state(model, rng);
     const std::vector<long double> q(state.q.begin(), state.q.end());
     const std::vector<long double> qd(state.qd.begin(), state.qd.end());
     const std::vector<long double> tau(state.tau.begin(), state.tau.end());
-    std::vector<long double> M(static_cast<std::size_t>(ml.nv) * ml.nv), qdd(ml.nv);
-    crba<long double>(ml, ws, q, M);
-    conds.push_back(condition_number(Eigen::Map<const MatrixL>(M.data(), ml.nv, ml.nv)));
+    std::vector<long double> qdd(ml.nv);
+    if (c.cond_M_lower_bound) {
+      conds.push_back(condition_number_by_iteration(ml0, ws, q, rng));
+    } else {
+      std::vector<long double> M(static_cast<std::size_t>(ml.nv) * ml.nv);
+      crba<long double>(ml, ws, q, M);
+      conds.push_back(condition_number(Eigen::Map<const MatrixL>(M.data(), ml.nv, ml.nv)));
+    }
 
     if (!with_aba) continue;
     aba<long double>(ml, ws, q, qd, tau, qdd);
