@@ -1,11 +1,15 @@
 #include "emit.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include <fmt/format.h>
+
+#include "names.hpp"
 
 namespace dyngen::gen {
 
@@ -52,11 +56,27 @@ std::string shortest(T value) {
   return s;
 }
 
-std::string sanitize(const std::string& name) {
-  std::string s;
-  for (const char ch : name) s += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-  if (s.empty() || std::isdigit(static_cast<unsigned char>(s[0]))) s = "b_" + s;
-  return s;
+/// The prefix of each body's temporaries (`upper_arm` for upper_arm_7), "t" for those of no
+/// body: identifiers of at most 32 characters, distinct for distinct bodies ("link-1" and
+/// "link_1", "α" and "β"), so that no two temporaries share a name.
+std::vector<std::string> temporary_prefixes(const Model<double>& model) {
+  std::set<std::string> taken{"t"};
+  std::vector<std::string> prefixes{"t"};
+  for (int i = 0; i < model.nbodies; ++i) {
+    std::string prefix;
+    for (const char ch : model.body_name[i]) {
+      const unsigned char c = static_cast<unsigned char>(ch);
+      if (c < 0x80 && std::isalnum(c)) prefix += ch;
+      else if (!prefix.empty() && prefix.back() != '_') prefix += '_';
+    }
+    while (!prefix.empty() && prefix.back() == '_') prefix.pop_back();
+    if (prefix.size() > 32) prefix.resize(32);
+    if (prefix.empty() || std::isdigit(static_cast<unsigned char>(prefix[0])))
+      prefix = "link" + prefix;
+    for (int k = 0; !taken.insert(prefix).second; ++k) prefix = fmt::format("link{}_{}", i, k);
+    prefixes.push_back(prefix);
+  }
+  return prefixes;
 }
 
 template <class T>
@@ -64,9 +84,10 @@ std::string section_header(const Model<double>& model, int body, Pass pass) {
   if (body < 0) return fmt::format("    // ---- {}\n", pass_name(pass));
   const int p = model.parent[body];
   const std::string parent =
-      p < 0 ? std::string("base") : fmt::format("'{}' ({})", model.body_name[p], p);
-  return fmt::format("    // ---- link '{}' ({}) <- {}; joint '{}': {}; {}\n", model.body_name[body],
-                     body, parent, model.joint_name[body], joint_description(model, body),
+      p < 0 ? std::string("base") : fmt::format("'{}' ({})", safe_text(model.body_name[p]), p);
+  return fmt::format("    // ---- link '{}' ({}) <- {}; joint '{}': {}; {}\n",
+                     safe_text(model.body_name[body]), body, parent,
+                     safe_text(model.joint_name[body]), joint_description(model, body),
                      pass_name(pass));
 }
 
@@ -170,7 +191,7 @@ std::vector<Section> sections_of(const Program<T>& program, const std::vector<bo
 }
 
 std::string body_label(const Model<double>& model, int body) {
-  return fmt::format("'{}' ({})", model.body_name[body], body);
+  return fmt::format("'{}' ({})", safe_text(model.body_name[body]), body);
 }
 
 }  // namespace
@@ -324,6 +345,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     out += fmt::format("    {} w[{}];  // the outputs of the sections that shared functions compute\n\n",
                        type, w_size);
   std::vector<int> per_body(model.nbodies + 1, 0);
+  const std::vector<std::string> prefixes = temporary_prefixes(model);
   for (const Section& s : sections) {
     out += section_header<T>(model, s.body, s.pass);
     if (s.group >= 0) {
@@ -338,8 +360,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     }
     for (const int id : s.ops) {
       const Node<T>& n = nodes[id];
-      const std::string body = n.body < 0 ? std::string("t") : sanitize(model.body_name[n.body]);
-      name[id] = fmt::format("{}_{}", body, per_body[n.body + 1]++);
+      name[id] = fmt::format("{}_{}", prefixes[n.body + 1], per_body[n.body + 1]++);
       out += fmt::format("    const {} {} = {};\n", type, name[id], expression(n, operand));
     }
     out += "\n";

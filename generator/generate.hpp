@@ -7,6 +7,7 @@
 
 #include "dyngen/numerics/conditioning.hpp"
 #include "emit.hpp"
+#include "names.hpp"
 #include "output.hpp"
 #include "robot.hpp"
 #include "trace.hpp"
@@ -49,8 +50,6 @@ struct Generated {
 /// (the estimate of numerics::Conditioning::aba_digits_lost, or constants outside float's range).
 inline constexpr double min_float_digits = 3, min_double_digits = 6;
 
-/// A valid C++ identifier from a robot name ("my-robot" -> "my_robot").
-std::string identifier(const std::string& name);
 
 /// What --snap changed, in words, as the banner and the console say it.
 std::string snap_text(const SnapReport& s);

@@ -165,19 +165,20 @@ int run_reporting_errors(const char* command, Work work) {
   try {
     work();
   } catch (const InputError& e) {
-    fmt::print(stderr, "{}: error: {}\n", command, e.what());
+    fmt::print(stderr, "{}: error: {}\n", command, safe_text(e.what(), true));
     return 1;
   } catch (const FileError& e) {
-    fmt::print(stderr, "{}: error: {}\n", command, e.what());
+    fmt::print(stderr, "{}: error: {}\n", command, safe_text(e.what(), true));
     return 1;
   } catch (const std::filesystem::filesystem_error& e) {
-    fmt::print(stderr, "{}: error: {}: {}\n", command, e.path1().string(), e.code().message());
+    fmt::print(stderr, "{}: error: {}: {}\n", command, safe_text(e.path1().string()),
+               e.code().message());
     return 1;
   } catch (const std::bad_alloc&) {
     fmt::print(stderr, "{}: error: out of memory\n", command);
     return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "{}: error: {}\n", command, e.what());
+    fmt::print(stderr, "{}: error: {}\n", command, safe_text(e.what(), true));
     return 2;
   }
   return 0;
@@ -199,7 +200,7 @@ int eval_main(int argc, char** argv) {
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen eval", [&] {
     const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
+    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
     write_results(robot.model, read_states(robot.model, states), stdout);
   });
 }
@@ -245,7 +246,7 @@ int report_main(int argc, char** argv) {
     for (int k = 1; k < argc; ++k) options.command += " " + std::string(argv[k]);
     if (!options.quiet) fmt::print("dyngen {} report: reading {}\n", version, input);
     const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
+    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
     make_report(robot, options, output);
   });
 }
@@ -296,10 +297,16 @@ int main(int argc, char** argv) {
     options.single_precision = scalar == "float";
     options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
 
+    if (!name.empty() && !is_identifier(name))
+      throw InputError(fmt::format(
+          "--name {}: not usable as a C++ namespace and file prefix (it must be letters, digits "
+          "and single underscores, start with a letter, have at most {} characters, and not be a "
+          "C or C++ keyword or a name the C library declares); for example --name {}",
+          name, max_identifier, identifier(name)));
     check_output_dir(output, force);
     if (!quiet) fmt::print("dyngen {}: reading {}\n", version, input);
     const Robot robot = load_robot(input, load);
-    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
+    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
     options.name = identifier(name.empty() ? robot.name : name);
 
     std::string algorithm_list;
@@ -312,7 +319,8 @@ int main(int argc, char** argv) {
     options.options_text += flags.text();
 
     if (!quiet) {
-      fmt::print("robot '{}': {} degrees of freedom in {} bodies", robot.name, robot.model.nv,
+      fmt::print("robot '{}': {} degrees of freedom in {} bodies", safe_text(robot.name),
+                 robot.model.nv,
                  robot.model.nbodies);
       if (!robot.locked.empty()) fmt::print(", {} joints locked", robot.locked.size());
       fmt::print("\n");
@@ -324,7 +332,7 @@ int main(int argc, char** argv) {
     }
     const Generated generated = generate(robot, options);
     write_package(output, generated.files, force);
-    for (const std::string& w : generated.warnings) fmt::print(stderr, "dyngen: warning: {}\n", w);
+    for (const std::string& w : generated.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
 
     if (!quiet) {
       fmt::print("operations per call, generated vs runtime (add+sub, mul, div, neg, sin, cos):\n");

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dyngen/numerics/reference.hpp"
+#include "names.hpp"
 #include "output.hpp"
 #include "template.hpp"
 
@@ -214,15 +215,15 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   write_variant(robot, options, name + "_fastmath", false, work / "fastmath", false);
   const std::string banner = fmt::format(
       "Written by dyngen {} report for robot '{}' ({}); rewritten on every run.", version,
-      robot.name, fs::path(robot.path).filename().string());
+      safe_text(robot.name), safe_text(fs::path(robot.path).filename().string()));
   write_file(work / "CMakeLists.txt",
              fill("report_CMakeLists.txt.in", {{"banner", "# " + banner}, {"name", name},
-                                                {"robot", robot.name}}));
+                                                {"robot", safe_text(robot.name)}}));
   write_file(work / "harness.cpp",
              fill("report_harness.cpp.in",
                   {{"banner", "// " + banner},
                    {"name", name},
-                   {"robot", robot.name},
+                   {"robot", safe_text(robot.name)},
                    {"rnea", has(options.algorithms, Algorithm::Rnea) ? "1" : "0"},
                    {"crba", has(options.algorithms, Algorithm::Crba) ? "1" : "0"},
                    {"aba", has(options.algorithms, Algorithm::Aba) ? "1" : "0"},
@@ -268,19 +269,20 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
                             {"float_unrepresentable", c.float_unrepresentable}};
 
   std::string summary = fmt::format(
-      "Robot '{}' from `{}` (sha256 {}): {} joints, nq = {}{}. dyngen {}.\n\n```\n{}\n```",
-      robot.name, report["robot_file"].get<std::string>(), robot.sha256, robot.model.nv,
-      robot.model.nq, options.model_flags.empty() ? "" : ", options" + options.model_flags,
-      version, conditioning_text(c, has(options.algorithms, Algorithm::Aba)));
+      "Robot {} from {} (sha256 {}): {} joints, nq = {}{}. dyngen {}.\n\n```\n{}\n```",
+      markdown_code(robot.name), markdown_code(report["robot_file"].get<std::string>()),
+      robot.sha256, robot.model.nv, robot.model.nq,
+      options.model_flags.empty() ? "" : ", options " + markdown_code(options.model_flags),
+      version, safe_text(conditioning_text(c, has(options.algorithms, Algorithm::Aba)), true));
   if (has(options.algorithms, Algorithm::Aba) && !float_aba)
     summary += fmt::format(
         "\n\nNo generated float ABA: once the model's constants are rounded to float, these "
         "joints move no inertia, so it cannot be generated (the runtime's float ABA divides by "
         "zero there): {}.",
-        joint_list(robot.model, blocking_in_float));
+        safe_text(joint_list(robot.model, blocking_in_float)));
   const std::string markdown = fill(
       "report.md.in",
-      {{"robot", robot.name},
+      {{"robot", markdown_code(robot.name)},
        {"summary", summary},
        {"states", std::to_string(report["states"].get<int>())},
        {"seed", std::to_string(options.seed)},
@@ -304,7 +306,7 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
        {"svg", "report.svg"},
        {"data", data},
        {"panels", std::to_string(panels)},
-       {"title", fmt::format("{}: error against time, {} states", robot.name,
+       {"title", fmt::format("{}: error against time, {} states", gnuplot_string(robot.name),
                              report["states"].get<int>())},
        {"plots", plots}});
 
@@ -313,7 +315,7 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   std::vector<std::string> written = {"report.md", "report.json", "report.gp"};
   try {
     write_file(out_dir / ("report.md" + tmp), markdown);
-    write_file(out_dir / ("report.json" + tmp), report.dump(2) + "\n");
+    write_file(out_dir / ("report.json" + tmp), report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     write_file(out_dir / ("report.gp" + tmp), script);
     if (have_gnuplot()) {
       written.push_back("report.svg");

@@ -2,7 +2,7 @@
 // of floating-point operations that runtime<T> performs, as an expression graph.
 //
 // While recording, the graph applies only rewrites that IEEE-754 arithmetic makes exact for
-// finite values (DESIGN.md): constant folding in T, x*1, x*(-1), x*0, x+0, x-0, 0-x, 0/x,
+// finite values (docs/design.md): constant folding in T, x*1, x*(-1), x*0, x+0, x-0, 0-x, 0/x,
 // x/1, -(-x), negations moved out of products and quotients and absorbed by sums, and reuse
 // of identical nodes. Nothing is reassociated or fused.
 #pragma once

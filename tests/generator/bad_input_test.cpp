@@ -1,4 +1,4 @@
-// Bad input (DESIGN.md, "Errors and warnings"): every error names the file, the element and the
+// Bad input (docs/design.md, "Errors and warnings"): every error names the file, the element and the
 // problem, through the library and through the dyngen command, which exits non-zero and writes
 // nothing. Imperfect real-world URDFs load with warnings instead.
 #include <algorithm>

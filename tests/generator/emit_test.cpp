@@ -1,4 +1,4 @@
-// Emission: constants print as C++ literals that read back to the same bits (DESIGN.md, "The
+// Emission: constants print as C++ literals that read back to the same bits (docs/design.md, "The
 // bit-for-bit contract"), and emitted code carries per-link provenance and none of the artifacts
 // STYLE.md rules out (no "* 1", no "+ 0", no trailing whitespace, no tabs).
 #include <algorithm>

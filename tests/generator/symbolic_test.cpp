@@ -1,4 +1,4 @@
-// The expression graph's rewrites are exact (DESIGN.md, "Why tracing the runtime"): evaluating a
+// The expression graph's rewrites are exact (docs/design.md, "Why tracing the runtime"): evaluating a
 // simplified graph gives the bits of evaluating the same recording without rewrites, up to the
 // sign of zero, for finite inputs. Also: CSE, commutative sharing, dead-node removal, and
 // constant folding in the graph's own scalar type.

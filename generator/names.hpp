@@ -1,0 +1,42 @@
+// Names from a robot file (robot, links, joints, the file's own name) made safe wherever they
+// land in text that dyngen writes: comments, string literals, identifiers, CMake, gnuplot,
+// Markdown and the terminal. A URDF is untrusted input; what it names must never become code.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace dyngen::gen {
+
+/// Text for a C, C++, CMake or gnuplot comment, a console message or a Markdown line: printable
+/// ASCII and valid UTF-8 as they are, except that every control character, DEL, C1 control,
+/// Unicode line or paragraph separator (U+0085, U+2028, U+2029) and invalid byte becomes
+/// \xNN (\u2028 for the separators), a backslash becomes \x5c (so that no line ends in one,
+/// which would splice the next line into the comment), "??" becomes "?\x3f" (trigraphs) and
+/// "*/" becomes "*\x2f". With keep_newlines, '\n' stays (multi-line messages).
+std::string safe_text(std::string_view text, bool keep_newlines = false);
+
+/// A C and C++ string literal, quotes included, whose bytes are exactly text's: printable ASCII
+/// as it is, with \" \\ and \? (after a ?), every other byte as a three-digit octal escape.
+std::string string_literal(std::string_view text);
+
+/// An identifier made from a name: letters and digits kept, every run of other characters one
+/// underscore, none leading or trailing; "robot" when nothing is left, "robot_" before a
+/// leading digit; at most max_identifier characters (a longer name keeps its start and gets a
+/// hash of the whole, so that different long names stay different); and never a C or C++
+/// keyword, alternative token, common predefined or library macro, or a name that the C and C++
+/// libraries declare at global scope (a "_robot" is appended to those).
+std::string identifier(std::string_view name);
+
+inline constexpr std::size_t max_identifier = 48;
+
+/// Whether name can be used as it is for a namespace and file prefix: identifier(name) == name.
+bool is_identifier(std::string_view name);
+
+/// Text for a gnuplot double-quoted string: safe_text, with " and \ escaped.
+std::string gnuplot_string(std::string_view text);
+
+/// Text for a Markdown code span, backticks included.
+std::string markdown_code(std::string_view text);
+
+}  // namespace dyngen::gen

@@ -1,0 +1,155 @@
+// Names from a robot file reach comments, string literals, identifiers and scripts. The C++
+// compiler is the independent judge here: a string literal it reads back must hold the name's
+// bytes, and a package generated from tests/models/coverage/hostile_names.urdf, whose names
+// carry "#error" lines behind newlines, "*/", trailing backslashes, trigraphs and Unicode line
+// separators, must compile with every warning an error (-Wcomment catches a spliced line).
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "files.hpp"
+#include "names.hpp"
+
+namespace dyngen::gen {
+namespace {
+
+namespace fs = std::filesystem;
+using test::read;
+using test::ScratchTest;
+
+TEST(SafeText, EscapesWhatCouldEndOrSpliceALine) {
+  EXPECT_EQ(safe_text("ur5 arm_1 (v2) ~ok"), "ur5 arm_1 (v2) ~ok");
+  EXPECT_EQ(safe_text("a\nb\rc\td"), "a\\x0ab\\x0dc\\x09d");
+  EXPECT_EQ(safe_text("a\nb", true), "a\nb");
+  EXPECT_EQ(safe_text("end\\"), "end\\x5c");
+  EXPECT_EQ(safe_text("x */ y /* z"), "x *\\x2f y /* z");
+  EXPECT_EQ(safe_text("what?\?/"), "what?\\x3f/");
+  EXPECT_EQ(safe_text(std::string("nul\0x", 5)), "nul\\x00x");
+  EXPECT_EQ(safe_text("del\x7f"), "del\\x7f");
+  // UTF-8 letters stay; U+2028, U+2029 and C1 controls (U+0085) end lines for some tools
+  EXPECT_EQ(safe_text("\xce\xb1/\xce\xb2"), "\xce\xb1/\xce\xb2");
+  EXPECT_EQ(safe_text("a\xe2\x80\xa8" "b\xe2\x80\xa9" "c\xc2\x85"), "a\\u2028b\\u2029c\\u0085");
+  // invalid UTF-8: a lone continuation byte, a truncated sequence, an overlong '/', a surrogate
+  EXPECT_EQ(safe_text("\x80|\xe2\x80|\xc0\xaf|\xed\xa0\x80"),
+            "\\x80|\\xe2\\x80|\\xc0\\xaf|\\xed\\xa0\\x80");
+}
+
+TEST(Identifier, IsAPlainNameThatIsNotReserved) {
+  EXPECT_EQ(identifier("ur5"), "ur5");
+  EXPECT_EQ(identifier("my-robot v2"), "my_robot_v2");
+  EXPECT_EQ(identifier("__x__y__"), "x_y");
+  EXPECT_EQ(identifier("2dof_planar"), "robot_2dof_planar");
+  EXPECT_EQ(identifier(""), "robot");
+  EXPECT_EQ(identifier("\xce\xb1\xce\xb2"), "robot");
+  EXPECT_EQ(identifier("int"), "int_robot");
+  EXPECT_EQ(identifier("std"), "std_robot");
+  EXPECT_EQ(identifier("sin"), "sin_robot");
+  EXPECT_EQ(identifier("main"), "main_robot");
+  // long names are cut, and keep apart by a hash of the whole
+  const std::string a = identifier(std::string(300, 'L') + "a");
+  const std::string b = identifier(std::string(300, 'L') + "b");
+  EXPECT_EQ(a.size(), max_identifier);
+  EXPECT_EQ(b.size(), max_identifier);
+  EXPECT_NE(a, b);
+  for (const char* name : {"ur5", "robot_2dof_planar", "a_b"})
+    EXPECT_TRUE(is_identifier(name)) << name;
+  for (const char* name : {"int", "2dof", "a__b", "_a", "a-b", "", "sin"})
+    EXPECT_FALSE(is_identifier(name)) << name;
+}
+
+TEST(MarkdownAndGnuplot, KeepTheirQuoting) {
+  EXPECT_EQ(markdown_code("a`b\nc"), "`a'b\\x0ac`");
+  EXPECT_EQ(gnuplot_string("say \"hi\"\\"), "say \\\"hi\\\"\\\\x5c");
+}
+
+/// Compiles source with the C++ compiler that built the tests, with trigraphs on and every
+/// warning an error, and runs the program when output is given. Returns "" or what went wrong.
+std::string compile(const fs::path& dir, const std::string& source, const std::string& flags,
+                    std::string* output = nullptr) {
+  const fs::path cpp = dir / "probe.cpp", exe = dir / "probe", out = dir / "probe.out";
+  std::ofstream(cpp) << source;
+  const std::string command =
+      fmt::format("{} -trigraphs -Wall -Wextra -Werror {} {} {} > {} 2>&1", DYNGEN_CXX_COMPILER,
+                  flags, cpp.string(), output ? fmt::format("-o {}", exe.string()) : "-fsyntax-only",
+                  out.string());
+  if (std::system(command.c_str()) != 0) return fmt::format("compile failed: {}", read(out));
+  if (!output) return "";
+  if (std::system(fmt::format("{} > {}", exe.string(), out.string()).c_str()) != 0)
+    return "run failed";
+  *output = read(out);
+  return "";
+}
+
+class StringLiteral : public ScratchTest {};
+
+TEST_F(StringLiteral, TheCompilerReadsBackEveryByte) {
+  std::string text;
+  for (int c = 1; c < 256; ++c) text += static_cast<char>(c);
+  // NUL bytes, trigraphs, quotes and backslashes; ?\? is how this file spells two ?s
+  text += std::string(1, '\0') + " ?\?/ ?\?= ?\?' \" \\ \\n\n?" + std::string(1, '\0') + "?\?7";
+  const std::string source = fmt::format(
+      "#include <cstdio>\nstatic const char s[] = {};\n"
+      "int main() {{ std::fwrite(s, 1, sizeof s - 1, stdout); }}\n",
+      string_literal(text));
+  std::string printed;
+  ASSERT_EQ(compile(dir, source, "-std=c++17", &printed), "");
+  EXPECT_EQ(printed, text);
+}
+
+class HostileNames : public ScratchTest {};
+
+TEST_F(HostileNames, NeverBecomeCode) {
+  // the file's own name reaches the banner too (it cannot hold a '/')
+  const fs::path urdf = dir / "robot \\\n#error file name.urdf";
+  fs::copy_file(fs::path(DYNGEN_TEST_MODELS) / "coverage" / "hostile_names.urdf", urdf);
+  const fs::path gen = dir / "gen";
+  const std::string command = fmt::format("{} '{}' -o {} --quiet 2>{}", DYNGEN_EXECUTABLE,
+                                          urdf.string(), gen.string(),
+                                          (dir / "stderr").string());
+  ASSERT_EQ(std::system(command.c_str()), 0) << read(dir / "stderr");
+
+  std::vector<fs::path> sources;
+  for (const auto& e : fs::directory_iterator(gen)) {
+    const std::string text = read(e.path());
+    for (const char c : text)
+      EXPECT_FALSE((static_cast<unsigned char>(c) < 0x20 && c != '\n') || c == 0x7f)
+          << e.path().filename() << " holds control character " << int(c);
+    EXPECT_EQ(text.find("\\\n"), std::string::npos) << e.path().filename();
+    EXPECT_EQ(text.find("\xe2\x80\xa8"), std::string::npos) << e.path().filename();
+    if (e.path().extension() == ".cpp") sources.push_back(e.path());
+  }
+  // the generated code with its header (C++17 and later), and the check with the model tables
+  // and the runtime (C++20)
+  ASSERT_EQ(sources.size(), 2u);
+  for (const fs::path& source : sources)
+    EXPECT_EQ(compile(dir, fmt::format("#include \"{}\"\n", source.string()),
+                      fmt::format("-std=c++{} -I{} -I{}/runtime/include",
+                                  source.string().ends_with("_check.cpp") ? 20 : 17,
+                                  gen.string(), DYNGEN_SOURCE_DIR)),
+              "")
+        << source.filename();
+
+  // the package's CMakeLists.txt: the robot name's "message(FATAL_ERROR injected)" line stays
+  // in a line comment, and no bracket comment swallows the lines after it
+  const std::string cmake = read(gen / "CMakeLists.txt");
+  const std::string payload = "message(FATAL_ERROR injected)";
+  EXPECT_NE(cmake.find(payload), std::string::npos);
+  std::istringstream lines(cmake);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find(payload) != std::string::npos) {
+      EXPECT_EQ(line.rfind("#", 0), 0u) << line;
+    }
+    EXPECT_EQ(line.find("#["), std::string::npos) << line;
+  }
+}
+
+}  // namespace
+}  // namespace dyngen::gen
