@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -134,9 +135,10 @@ namespace {
 void check_mimics(Robot& robot, const std::vector<std::pair<std::string, std::string>>& mimics,
                   bool independent) {
   std::string moving;
+  const std::set<std::string> moving_joints(robot.model.joint_name.begin(),
+                                            robot.model.joint_name.end());
   for (const auto& [joint, mimicked] : mimics)
-    if (std::find(robot.model.joint_name.begin(), robot.model.joint_name.end(), joint) !=
-        robot.model.joint_name.end())
+    if (moving_joints.count(joint))
       moving += fmt::format("{}'{}' (mimics '{}')", moving.empty() ? "" : ", ", joint, mimicked);
   if (moving.empty()) return;
   if (!independent)

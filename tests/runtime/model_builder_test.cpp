@@ -14,6 +14,14 @@
 namespace dyngen {
 namespace {
 
+/// prefix followed by k ("L3"), built by appending: GCC 12's -Wrestrict misfires on
+/// "L" + std::to_string(k).
+std::string numbered(const char* prefix, int k) {
+  std::string s(prefix);
+  s += std::to_string(k);
+  return s;
+}
+
 using Vector = Eigen::VectorXd;
 using Vector3 = Eigen::Vector3d;
 using Matrix3 = Eigen::Matrix3d;
@@ -328,20 +336,20 @@ TEST(ModelBuilder, RandomTreesInShuffledOrder) {
     }
     for (int l = 0; l < nlinks; ++l) order[l] = l;
     for (int l = nlinks - 1; l > 0; --l) std::swap(order[l], order[rng.index(l + 1)]);
-    auto name = [](int l) { return "L" + std::to_string(l); };
+    auto name = [](int l) { return numbered("L", l); };
     ModelBuilder b;
     for (const int l : order) b.add_link(link(name(l), 1, {0.1, 0, 0}, {0.1, 0.1, 0.1}));
     for (const int l : order)
       if (l > 0)
-        b.add_joint(joint("J" + std::to_string(l),
+        b.add_joint(joint(numbered("J", l),
                           fixed[l] ? JointKind::Fixed : JointKind::Revolute, name(parent_link[l]),
                           name(l), {0.1, 0.2, 0}, rpy(0, 0, 0), {0, 0, 1}));
     const Model<double> model = b.build({0, 0, -9.81});
-    expect_topological(model, "trial " + std::to_string(trial));
+    expect_topological(model, numbered("trial ", trial));
     EXPECT_EQ(model.nbodies, std::count(fixed.begin() + 1, fixed.end(), false));
     for (int i = 0; i < model.nbodies; ++i) {
       const int l = std::stoi(model.body_name[i].substr(1));
-      EXPECT_EQ(model.joint_name[i], "J" + std::to_string(l));
+      EXPECT_EQ(model.joint_name[i], numbered("J", l));
       int a = parent_link[l];
       while (a > 0 && fixed[a]) a = parent_link[a];
       EXPECT_EQ(model.parent[i], a <= 0 ? -1 : body_index(model, name(a)));
@@ -495,6 +503,133 @@ TEST(ModelBuilder, Errors) {
           tree({}).add_joint(joint("bent", JointKind::Revolute, "base", "a", {}, R, {0, 0, 1}));
         },
         "joint 'bent': the origin rotation is not a rotation matrix");
+}
+
+// An axis is a direction whatever its length: (1e300, 0, 0) has a square that overflows and
+// (1e-200, 0, 0) one that underflows, yet each is the x axis. The directions are checked against
+// long double, whose range holds these squares.
+TEST(ModelBuilder, AxesOfAnyFiniteLengthAreDirections) {
+  const std::pair<Vec3<double>, JointType> axes[] = {
+      {{1e300, 0, 0}, JointType::RevoluteX},        {{1e200, 1e200, 0}, JointType::Revolute},
+      {{1e-200, 0, 0}, JointType::RevoluteX},       {{0, -1e-310, 0}, JointType::RevoluteY},
+      {{1.5e308, 1.5e308, 0}, JointType::Revolute}, {{3e-200, 4e-200, 0}, JointType::Revolute},
+  };
+  for (const auto& [axis, type] : axes) {
+    ModelBuilder b;
+    b.add_link(link("base", 0, {}, {}));
+    b.add_link(link("body", 1, {0.1, 0.2, 0.3}, {0.1, 0.1, 0.1}));
+    b.add_joint(joint("j", JointKind::Revolute, "base", "body", {}, rpy(0, 0, 0), axis));
+    const Model<double> model = b.build({0, 0, -9.81});
+    EXPECT_EQ(model.joint_type[0], type) << dense(axis).transpose();
+    const long double x = axis.x, y = axis.y, z = axis.z;
+    const long double length = std::sqrt(x * x + y * y + z * z);
+    const Vec3<double>& k = model.joint_axis[0];
+    EXPECT_NEAR(k.x, static_cast<double>(x / length), eps) << dense(axis).transpose();
+    EXPECT_NEAR(k.y, static_cast<double>(y / length), eps) << dense(axis).transpose();
+    EXPECT_NEAR(k.z, static_cast<double>(z / length), eps) << dense(axis).transpose();
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Vec3<double>& axis : {Vec3<double>{0, 0, 0}, Vec3<double>{inf, 0, 0},
+                                   Vec3<double>{0, std::nan(""), 1}})
+    expect_model_error(
+        [&] {
+          ModelBuilder b = tree({{"base", "a"}, {"a", "b"}, {"b", "c"}});
+          b.add_link(link("d", 1, {}, {1, 1, 1}));
+          b.add_joint(joint("bad", JointKind::Prismatic, "a", "d", {}, rpy(0, 0, 0), axis));
+          b.build({0, 0, -9.81});
+        },
+        "joint 'bad' has a zero or non-finite axis");
+}
+
+/// A chain of n links on revolute (or fixed) joints about z, each 0.1 m after the last.
+ModelBuilder long_chain(int n, JointKind kind) {
+  ModelBuilder b;
+  b.add_link(link("base", 0, {}, {}));
+  for (int i = 1; i <= n; ++i) {
+    b.add_link(link(numbered("l", i), 1, {0.05, 0, 0}, {0.01, 0.01, 0.01}));
+    b.add_joint(joint(numbered("j", i), i == 1 ? JointKind::Revolute : kind,
+                      i == 1 ? "base" : numbered("l", i - 1), numbered("l", i),
+                      {i == 1 ? 0 : 0.1, 0, 0}, rpy(0, 0, 0), {0, 0, 1}));
+  }
+  return b;
+}
+
+// The tree is walked without recursion: a chain of 100,000 links (which overflowed the call
+// stack at about 20,000) builds, in order, and so does one of 100,000 links on fixed joints,
+// merged into one body.
+TEST(ModelBuilder, LongChainsBuild) {
+  const Model<double> chain = long_chain(100000, JointKind::Revolute).build({0, 0, -9.81});
+  ASSERT_EQ(chain.nbodies, 100000);
+  for (int i = 0; i < chain.nbodies; ++i) {
+    EXPECT_EQ(chain.parent[i], i - 1);
+    EXPECT_EQ(chain.body_name[i], numbered("l", i + 1));
+  }
+  const Model<double> fixed = long_chain(100000, JointKind::Fixed).build({0, 0, -9.81});
+  ASSERT_EQ(fixed.nbodies, 1);
+  EXPECT_NEAR(fixed.I[0].m, 100000, 1e-9);
+  // the first moment sums m (0.1 (i - 1) + 0.05) over the links: 1e4 (1e5 - 1) / 2 + 5e3
+  EXPECT_NEAR(fixed.I[0].h.x, 0.1 * 100000.0 * 99999.0 / 2 + 0.05 * 100000, 1e-6 * 5e8);
+}
+
+// One check of the model's numbers after building: each constant the algorithms use must be
+// finite and at most max_model_constant, and a mass or moment of inertia zero or normal; the
+// error names the link or joint and the field.
+TEST(ModelBuilder, NumbersTheAlgorithmsCannotComputeWithAreRefused) {
+  const Vec3<double> g{0, 0, -9.81};
+  const auto one_link = [](double mass, Vec3<double> com, Sym3<double> I, Vec3<double> xyz) {
+    ModelBuilder b;
+    b.add_link(link("base", 0, {}, {}));
+    b.add_link(link("arm", mass, com, I));
+    b.add_joint(joint("shoulder", JointKind::Revolute, "base", "arm", xyz, rpy(0, 0, 0),
+                      {0, 0, 1}));
+    return b;
+  };
+  const Sym3<double> I{0.1, 0.1, 0.1};
+  expect_model_error([&] { one_link(1e308, {10, 0, 0}, I, {}).build(g); },
+                     "link 'arm': the mass 1e+308 kg exceeds 1e+50 in magnitude");
+  expect_model_error(
+      [&] { one_link(1, {1e200, 0, 0}, I, {}).build(g); },
+      "link 'arm': the first moment (mass times centre of mass) (1e+200, 0, 0) kg m exceeds");
+  // m c is 1e30, but m |c|^2 is 1e60
+  expect_model_error([&] { one_link(1, {1e30, 0, 0}, I, {}).build(g); },
+                     "link 'arm': the inertia about the link origin (xx, yy, zz, xy, xz, yz) "
+                     "(0.1, 1e+60, 1e+60, 0, 0, 0) kg m^2 exceeds");
+  // m c is 1e40, but |c|^2 overflows to inf
+  expect_model_error([&] { one_link(1e-260, {1e300, 0, 0}, I, {}).build(g); },
+                     "(0.1, inf, inf, 0, 0, 0) kg m^2 is not finite");
+  expect_model_error([&] { one_link(1e-320, {0.1, 0, 0}, I, {}).build(g); },
+                     "link 'arm': the mass 9.99989e-321 kg is subnormal");
+  // a normal mass whose moment about the origin, m |c|^2, is subnormal
+  expect_model_error([&] { one_link(1e-300, {1e-5, 0, 0}, {0, 0, 0}, {}).build(g); },
+                     "link 'arm': the moment of inertia yy about the link origin 1e-310");
+  expect_model_error([&] { one_link(1, {}, I, {0, 1e60, 0}).build(g); },
+                     "joint 'shoulder': the origin's position in the parent body (0, 1e+60, 0) m "
+                     "exceeds");
+  // two massless links on fixed joints 1.5e308 m out each put the next joint at infinity
+  expect_model_error(
+      [&] {
+        ModelBuilder b = one_link(1, {}, I, {});
+        b.add_link(link("post", 0, {}, {}));
+        b.add_link(link("beam", 0, {}, {}));
+        b.add_link(link("tip", 1, {}, I));
+        b.add_joint(joint("post", JointKind::Fixed, "arm", "post", {1.5e308, 0, 0}, rpy(0, 0, 0),
+                          {1, 0, 0}));
+        b.add_joint(joint("beam", JointKind::Fixed, "post", "beam", {1.5e308, 0, 0},
+                          rpy(0, 0, 0), {1, 0, 0}));
+        b.add_joint(joint("tip", JointKind::Revolute, "beam", "tip", {}, rpy(0, 0, 0),
+                          {0, 0, 1}));
+        b.build(g);
+      },
+      "joint 'tip': the origin's position in the parent body (inf, 0, 0) m is not finite");
+  expect_model_error([&] { one_link(1, {}, I, {}).build({0, 0, 1e308}); },
+                     "gravity (0, 0, 1e+308) m/s^2 exceeds 1e+50");
+  expect_model_error([&] { one_link(1, {}, I, {}).build({std::nan(""), 0, 0}); },
+                     "gravity (nan, 0, 0) m/s^2 is not finite");
+  // at the limits: accepted
+  const Model<double> big = one_link(1e50, {}, {1e50, 1e50, 1e50}, {1e50, 0, 0}).build({0, 0, 1e50});
+  EXPECT_EQ(big.I[0].m, 1e50);
+  const Model<double> small = one_link(2.3e-308, {}, {2.3e-308, 2.3e-308, 2.3e-308}, {}).build(g);
+  EXPECT_EQ(small.I[0].m, 2.3e-308);
 }
 
 }  // namespace

@@ -78,13 +78,17 @@ inline RigidInertia<double> link_inertia(const LinkSpec& link) {
            Ic.yz - m * c.y * c.z}};
 }
 
-/// |v| without overflow or underflow in its squares: v is first scaled by the power of two
-/// nearest below its largest component, which is exact, so an ordinary vector gets the bits of
-/// sqrt(v.v), and (1e300, 0, 0) or (1e-200, 0, 0) get their length. Not finite if v is not.
-inline double scaled_length(const Vec3<double>& v) {
+/// The exponent e with 2^e <= v's largest component < 2^(e+1); 0 when v is zero or not finite.
+/// Scaling v by 2^-e is exact and leaves squares that neither overflow nor underflow, and an
+/// ordinary vector's length and direction the same bits.
+inline int largest_exponent(const Vec3<double>& v) {
   const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  if (largest == 0 || !std::isfinite(largest)) return largest;
-  const int e = std::ilogb(largest);
+  return largest > 0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
+}
+
+/// |v| without overflow or underflow in its squares: (1e-200, 0, 0) has length 1e-200.
+inline double scaled_length(const Vec3<double>& v) {
+  const int e = largest_exponent(v);
   const Vec3<double> s{std::ldexp(v.x, -e), std::ldexp(v.y, -e), std::ldexp(v.z, -e)};
   return std::ldexp(std::sqrt(dot(s, s)), e);
 }
@@ -337,7 +341,9 @@ class ModelBuilder {
                                                  top.X_link_body);
       ++visited;
       if (joint.kind == JointKind::Fixed) {
-        if (body >= 0)
+        // a massless frame adds nothing, and is not moved (0 times an offset beyond double's
+        // range would be NaN, blamed on the body's inertia)
+        if (body >= 0 && !is_massless(links_[c]))
           model.I[body] = model.I[body] + apply_inertia_T(X_child_body, link_inertia(links_[c]));
         stack.push_back({c, body, X_child_body});
       } else if (joint.kind == JointKind::Planar) {
@@ -392,6 +398,12 @@ class ModelBuilder {
     return off + diag < 1e-9 && dot(cross(c0, c1), c2) > 0;
   }
 
+  static bool is_massless(const LinkSpec& link) {
+    const Sym3<double>& I = link.I_com;
+    return link.mass == 0 && I.xx == 0 && I.yy == 0 && I.zz == 0 && I.xy == 0 && I.xz == 0 &&
+           I.yz == 0;
+  }
+
   static Xform<double> identity() { return {{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}}; }
 
   int find_link(const std::string& name, const std::string& joint, const char* role) const {
@@ -402,9 +414,12 @@ class ModelBuilder {
     return it->second;
   }
 
+  /// Any finite non-zero axis is a direction, (1e300, 0, 0) and (1e-200, 0, 0) too.
   static Vec3<double> unit_axis(const JointSpec& joint) {
-    const Vec3<double>& a = joint.axis;
-    const double norm = scaled_length(a);
+    const int e = largest_exponent(joint.axis);
+    const Vec3<double> a{std::ldexp(joint.axis.x, -e), std::ldexp(joint.axis.y, -e),
+                         std::ldexp(joint.axis.z, -e)};
+    const double norm = std::sqrt(dot(a, a));
     if (!(norm > 0) || !std::isfinite(norm))
       throw ModelError("joint '" + joint.name + "' has a zero or non-finite axis");
     return norm == 1 ? a : Vec3<double>{a.x / norm, a.y / norm, a.z / norm};
