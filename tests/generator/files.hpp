@@ -87,14 +87,15 @@ inline std::string shell_quoted(const std::string& s) {
 inline CliResult run_dyngen(const std::vector<std::string>& args,
                             const std::filesystem::path& scratch, const std::string& input = "") {
   std::string command = shell_quoted(DYNGEN_EXECUTABLE);
-  for (const std::string& a : args) command += " " + shell_quoted(a);
+  // appended piecewise: GCC 12's -Wrestrict misfires on `" " + std::string`
+  for (const std::string& a : args) command.append(" ").append(shell_quoted(a));
   const std::filesystem::path out = scratch / "stdout.txt", err = scratch / "stderr.txt",
                               in = scratch / "stdin.txt";
   if (!input.empty()) {
     std::ofstream(in) << input;
-    command += " <" + shell_quoted(in);
+    command.append(" <").append(shell_quoted(in));
   }
-  command += " >" + shell_quoted(out) + " 2>" + shell_quoted(err);
+  command.append(" >").append(shell_quoted(out)).append(" 2>").append(shell_quoted(err));
   const int raw = std::system(command.c_str());
   CliResult r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(out), read(err)};
   std::filesystem::remove(out);
