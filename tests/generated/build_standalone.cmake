@@ -1,8 +1,15 @@
-# Configures, builds and tests a generated directory with its own CMakeLists.txt, as a user
-# would: cmake -S SOURCE -B BINARY -Ddyngen_DIR=... && cmake --build && ctest.
-file(REMOVE_RECURSE ${BINARY})
-foreach(step IN ITEMS configure build test)
-  if(step STREQUAL "configure")
+# Installs dyngen from DYNGEN_BUILD into INSTALL/prefix, moves it to INSTALL/moved, then
+# configures, builds and tests a generated directory with its own CMakeLists.txt against the
+# moved install, as a user would: cmake -S SOURCE -B BINARY -Ddyngen_DIR=... && cmake --build
+# && ctest.
+file(REMOVE_RECURSE ${BINARY} ${INSTALL})
+set(dyngen_DIR ${INSTALL}/moved/lib/cmake/dyngen)
+foreach(step IN ITEMS install move configure build test)
+  if(step STREQUAL "install")
+    set(cmd ${CMAKE_COMMAND} --install ${DYNGEN_BUILD} --prefix ${INSTALL}/prefix)
+  elseif(step STREQUAL "move")
+    set(cmd ${CMAKE_COMMAND} -E rename ${INSTALL}/prefix ${INSTALL}/moved)
+  elseif(step STREQUAL "configure")
     set(cmd ${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} -Ddyngen_DIR=${dyngen_DIR})
   elseif(step STREQUAL "build")
     set(cmd ${CMAKE_COMMAND} --build ${BINARY})
@@ -14,4 +21,10 @@ foreach(step IN ITEMS configure build test)
     message(FATAL_ERROR "${step} failed:\n${out}")
   endif()
 endforeach()
+# the check found the moved install, not this build tree
+file(STRINGS ${BINARY}/CMakeCache.txt found REGEX "^dyngen_DIR:")
+string(REGEX REPLACE "^dyngen_DIR:[A-Z]+=" "" found "${found}")
+if(NOT found STREQUAL dyngen_DIR)
+  message(FATAL_ERROR "the check used ${found}, not ${dyngen_DIR}")
+endif()
 message(STATUS "${out}")
