@@ -42,7 +42,6 @@ constexpr int state_count = 256;  // cycled through, so the inputs change every 
 constexpr std::uint64_t seed = 20261121;
 constexpr double tolerance = 1e-8;  // of the check against the runtime (the peers pass 1e-9)
 
-using gen::Algorithm;
 constexpr Algorithm Rnea = Algorithm::Rnea, Crba = Algorithm::Crba, Aba = Algorithm::Aba;
 constexpr Algorithm algorithms[] = {Rnea, Crba, Aba};
 enum Implementation { Generated, Snapped, Unrolled, Runtime, Mujoco, Kdl };
@@ -326,7 +325,7 @@ struct Subject {
 };
 
 std::string benchmark_name(const Package& p, Algorithm a, Implementation i) {
-  return std::string(p.name) + "/" + gen::algorithm_name(a) + "/" + implementation_names[i];
+  return std::string(p.name) + "/" + algorithm_name(a) + "/" + implementation_names[i];
 }
 
 /// Checks each algorithm of one implementation against the runtime on a few states, then
@@ -473,7 +472,7 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
                  r = time(p, a, Runtime), m = time(p, a, Mujoco), k = time(p, a, Kdl);
       if (!g && !sn && !u && !r && !m && !k) continue;  // filtered out
       md << "| " << robot << " | " << p.base << " | " << s->robot.model.nv << " | "
-         << gen::algorithm_name(a) << " | " << format_ns(g) << " | " << format_ns(sn) << " | "
+         << algorithm_name(a) << " | " << format_ns(g) << " | " << format_ns(sn) << " | "
          << format_ns(u) << " | " << format_ns(r) << " | " << format_ns(m) << " | "
          << format_ns(k) << " | " << (s->kdl->is_chain() ? "chain" : "tree") << " | "
          << format_ratio(r, g) << " | " << format_ratio(m, g) << " | " << format_ratio(k, g)
@@ -493,7 +492,7 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
   const char* kinds[] = {"planar_chain", "spatial_chain"};
   for (const char* kind : kinds)
     for (const Algorithm a : algorithms) {
-      gp << "$" << kind << "_" << gen::algorithm_name(a)
+      gp << "$" << kind << "_" << algorithm_name(a)
          << " << EOD\n# links generated unrolled runtime mujoco kdl ops_generated ops_runtime\n";
       for (const auto& s : subjects) {
         const Package& p = s->package;
@@ -517,21 +516,21 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
         "spatial)'\n";
   const char* colors[] = {"#1b9e77", "#66a61e", "#d95f02", "#7570b3", "#e7298a"};
   for (const Algorithm a : algorithms) {
-    gp << "set title '" << gen::algorithm_name(a) << ": time per call'\nset ylabel 'ns'\nplot ";
+    gp << "set title '" << algorithm_name(a) << ": time per call'\nset ylabel 'ns'\nplot ";
     for (int i = 0; i < n_plotted; ++i)
       for (int kind = 0; kind < 2; ++kind)
-        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << gen::algorithm_name(a)
+        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << algorithm_name(a)
            << " using 1:" << i + 2 << " with linespoints lc rgb '" << colors[i] << "' dt "
            << kind + 1 << " pt 7 ps 0.5 title '" << implementation_names[plotted[i]]
            << (kind ? " spatial" : " planar") << "'";
     gp << "\n";
   }
   for (const Algorithm a : algorithms) {
-    gp << "set title '" << gen::algorithm_name(a)
+    gp << "set title '" << algorithm_name(a)
        << ": operations per call'\nset ylabel 'add, mul, div, neg, sin, cos'\nplot ";
     for (int i = 0; i < 2; ++i)
       for (int kind = 0; kind < 2; ++kind)
-        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << gen::algorithm_name(a)
+        gp << (i || kind ? ", " : "") << "$" << kinds[kind] << "_" << algorithm_name(a)
            << " using 1:" << i + 2 + n_plotted << " with linespoints lc rgb '"
            << colors[i == 0 ? 0 : 2] << "' dt " << kind + 1 << " pt 7 ps 0.5 title '"
            << (i == 0 ? "generated" : "runtime")

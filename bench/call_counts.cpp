@@ -57,7 +57,6 @@ extern "C" __attribute__((noipa)) void dyngen_measured_call(dyngen::bench::Call 
 namespace dyngen::bench {
 namespace {
 
-using gen::Algorithm;
 
 constexpr int state_count = 16;
 constexpr std::uint64_t seed = 20261121;
@@ -66,7 +65,7 @@ constexpr const char* implementations[] = {"generated", "snapped", "unrolled", "
 
 std::optional<Algorithm> algorithm_named(const std::string& name) {
   for (const Algorithm a : {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba})
-    if (name == gen::algorithm_name(a)) return a;
+    if (name == algorithm_name(a)) return a;
   return std::nullopt;
 }
 
@@ -172,10 +171,10 @@ int measure(const std::string& package, const std::string& implementation, Algor
 std::map<std::string, long> operation_counts(const Package& p, Algorithm a) {
   std::map<std::string, long> ops;
   const gen::Robot robot = load(p, false);
-  ops["generated"] = gen::count_ops(gen::trace<double>(a, robot.model, true)).total();
-  ops["runtime"] = gen::count_ops(gen::trace<double>(a, robot.model, false), false).total();
+  ops["generated"] = gen::count_ops(gen::trace<double>(algorithm_name(a), robot.model, true)).total();
+  ops["runtime"] = gen::count_ops(gen::trace<double>(algorithm_name(a), robot.model, false), false).total();
   if (has(p, "snapped"))
-    ops["snapped"] = gen::count_ops(gen::trace<double>(a, load(p, true).model, true)).total();
+    ops["snapped"] = gen::count_ops(gen::trace<double>(algorithm_name(a), load(p, true).model, true)).total();
   if (has(p, "hand-written")) ops["hand-written"] = count_planar_chain(robot.model, a).total();
   return ops;
 }
@@ -227,7 +226,7 @@ int report(const std::string& counts_file, const std::filesystem::path& output) 
     if (!ir.count(p.name)) continue;
     std::fprintf(stderr, "  %s\n", p.name);
     for (const Algorithm a : {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba}) {
-      const std::string name = gen::algorithm_name(a);
+      const std::string name = algorithm_name(a);
       if (!ir[p.name].count(name)) continue;
       const std::map<std::string, double>& per_call = ir[p.name][name];
       const std::map<std::string, long> ops = operation_counts(p, a);

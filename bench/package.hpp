@@ -5,6 +5,7 @@
 
 #include "dyngen/numerics/random.hpp"
 #include "robot.hpp"
+#include "algorithm.hpp"
 #include "trace.hpp"
 
 namespace dyngen::bench {
@@ -45,11 +46,11 @@ inline gen::LoadOptions load_options(const Package& p, bool snapped = false) {
 }
 
 /// One call of a generated function at state s: tau, M (row-major) or qdd into out.
-inline void call(const Functions& f, gen::Algorithm a, const numerics::State& s, double* out) {
+inline void call(const Functions& f, Algorithm a, const numerics::State& s, double* out) {
   switch (a) {
-    case gen::Algorithm::Rnea: f.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out); break;
-    case gen::Algorithm::Crba: f.crba(s.q.data(), out); break;
-    case gen::Algorithm::Aba: f.aba(s.q.data(), s.qd.data(), s.tau.data(), out); break;
+    case Algorithm::Rnea: f.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out); break;
+    case Algorithm::Crba: f.crba(s.q.data(), out); break;
+    case Algorithm::Aba: f.aba(s.q.data(), s.qd.data(), s.tau.data(), out); break;
   }
 }
 

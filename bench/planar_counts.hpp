@@ -9,13 +9,14 @@
 #include "dyngen/numerics/random.hpp"
 #include "op_counter.hpp"
 #include "planar_reference.hpp"
+#include "algorithm.hpp"
 #include "trace.hpp"
 
 namespace dyngen::bench {
 
 /// The counts of algorithm a at one random state; the code has no branch on values, so any
 /// state gives them.
-inline OpTally count_planar_chain(const Model<double>& model, gen::Algorithm a) {
+inline OpTally count_planar_chain(const Model<double>& model, Algorithm a) {
   PlanarChain<Counted> chain(model);
   numerics::Random rng(1);
   const numerics::State s = numerics::random_state(model, rng);
@@ -24,9 +25,9 @@ inline OpTally count_planar_chain(const Model<double>& model, gen::Algorithm a) 
   std::vector<Counted> out(model.nv * model.nv);
   const CountScope scope;
   switch (a) {
-    case gen::Algorithm::Rnea: chain.rnea(q.data(), qd.data(), qdd.data(), out.data()); break;
-    case gen::Algorithm::Crba: chain.crba(q.data(), out.data()); break;
-    case gen::Algorithm::Aba: chain.aba(q.data(), qd.data(), tau.data(), out.data()); break;
+    case Algorithm::Rnea: chain.rnea(q.data(), qd.data(), qdd.data(), out.data()); break;
+    case Algorithm::Crba: chain.crba(q.data(), out.data()); break;
+    case Algorithm::Aba: chain.aba(q.data(), qd.data(), tau.data(), out.data()); break;
   }
   return scope.counts();
 }

@@ -33,7 +33,6 @@
 namespace dyngen::bench {
 namespace {
 
-using gen::Algorithm;
 
 constexpr int chain_links[] = {WORK_COUNT_LINKS};
 constexpr Algorithm algorithms[] = {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba};
@@ -157,8 +156,8 @@ std::vector<Row> count_model(const std::string& name, const std::string& kind,
   std::vector<Row> rows;
   for (const Algorithm a : algorithms) {
     Row r{name, kind, base, model.nv, a, seed_work(a, model.nv), {}, {}, {}};
-    r.generated = kinds(gen::count_ops(gen::trace<double>(a, model, true)));
-    r.runtime = kinds(gen::count_ops(gen::trace<double>(a, model, false), false));
+    r.generated = kinds(gen::count_ops(gen::trace<double>(algorithm_name(a), model, true)));
+    r.runtime = kinds(gen::count_ops(gen::trace<double>(algorithm_name(a), model, false), false));
     if (kind == "planar_chain") r.hand_written = count_planar_chain(model, a);
     rows.push_back(r);
   }
@@ -222,7 +221,7 @@ std::string markdown(const std::vector<Row>& rows, const std::vector<DenseRow>& 
   for (const Row& r : rows) {
     if (r.kind != "planar_chain") continue;
     md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                      r.nv, gen::algorithm_name(r.algorithm), r.seed_work, by_kind(r.generated),
+                      r.nv, algorithm_name(r.algorithm), r.seed_work, by_kind(r.generated),
                       r.generated.total(), per(r.generated.total(), r.nv),
                       per(r.generated.total(), r.seed_work), by_kind(*r.hand_written),
                       r.hand_written->total(), per(r.hand_written->total(), r.nv),
@@ -239,7 +238,7 @@ std::string markdown(const std::vector<Row>& rows, const std::vector<DenseRow>& 
       if (r.kind != kind) continue;
       table +=
           fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                      r.model, r.base, r.nv, gen::algorithm_name(r.algorithm), r.seed_work,
+                      r.model, r.base, r.nv, algorithm_name(r.algorithm), r.seed_work,
                       by_kind(r.generated), r.generated.total(), per(r.generated.total(), r.nv),
                       per(r.generated.total(), r.seed_work), by_kind(r.runtime), r.runtime.total(),
                       per(r.runtime.total(), r.nv), ratio(r.runtime.total(), r.generated.total()));
@@ -284,7 +283,7 @@ nlohmann::json json(const std::vector<Row>& rows, const std::vector<DenseRow>& d
                         {"kind", r.kind},
                         {"base", r.base},
                         {"dof", r.nv},
-                        {"algorithm", gen::algorithm_name(r.algorithm)},
+                        {"algorithm", algorithm_name(r.algorithm)},
                         {"seed_work", r.seed_work},
                         {"generated", to_json(r.generated)},
                         {"runtime", to_json(r.runtime)}};

@@ -24,7 +24,7 @@ template <class T>
 std::vector<bool> live_nodes(const Program<T>& program) {
   const auto& nodes = program.graph.nodes;
   std::vector<bool> live(nodes.size(), false);
-  for (const int id : program.outputs) live[id] = true;
+  for (const int id : program.stored) live[id] = true;
   for (int id = static_cast<int>(nodes.size()) - 1; id >= 0; --id) {
     if (!live[id]) continue;
     if (nodes[id].a >= 0) live[nodes[id].a] = true;
@@ -156,7 +156,7 @@ std::vector<Section> sections_of(const Program<T>& program, const std::vector<bo
     sections.back().ops.push_back(static_cast<int>(id));
   }
   std::vector<bool> read_outside(nodes.size(), false);
-  for (const int id : program.outputs) read_outside[id] = true;
+  for (const int id : program.stored) read_outside[id] = true;
   for (Section& s : sections) {
     const int self = section_of[s.ops.front()];
     std::map<int, int> slot, constant_slot;
@@ -201,7 +201,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   const auto& nodes = program.graph.nodes;
   const std::vector<bool> live = live_nodes(program);
   const char* type = std::is_same_v<T, float> ? "float" : "double";
-  const std::string prefix = algorithm_name(program.algorithm);
+  const std::string& prefix = program.algorithm;
 
   // sin and cos of joint angles come precomputed in trig (joint_trig), so that one call of
   // dyngen::sincos serves every function that takes the same q
@@ -330,10 +330,11 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     if (nodes[id].a >= 0) use(nodes[id].a);
     if (nodes[id].b >= 0) use(nodes[id].b);
   }
-  for (const int id : program.outputs) use(id);
+  for (const int id : program.stored) use(id);
 
   std::string& out = code.body;
-  std::vector<std::string> arrays = program.input_arrays;
+  std::vector<std::string> arrays;
+  for (const ProgramArray& a : program.inputs) arrays.emplace_back(a.spec.name);
   const auto q = std::find(arrays.begin(), arrays.end(), "q");
   arrays.insert(q == arrays.end() ? q : q + 1, "trig");
   for (const std::string& array : arrays)
@@ -366,8 +367,10 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     out += "\n";
   }
   out += "    // ---- outputs\n";
-  for (int k = 0; k < program.output_size; ++k)
-    out += fmt::format("    {}[{}] = {};\n", program.output_array, k, operand(program.outputs[k]));
+  std::size_t stored = 0;
+  for (const ProgramArray& a : program.outputs)
+    for (std::size_t k = 0; k < a.size; ++k)
+      out += fmt::format("    {}[{}] = {};\n", a.spec.name, k, operand(program.stored[stored++]));
   return code;
 }
 

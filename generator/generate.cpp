@@ -88,14 +88,72 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
                            : fmt::format(" ({} locked)", robot.locked.size()),
       options.options_text.empty() ? "" : " " + options.options_text);
   for (const FunctionCounts& c : counts) {
-    text += fmt::format("\n  {:<4}  generated: {}\n        runtime:   {}", algorithm_name(c.algorithm),
+    text += fmt::format("\n  {}\n    generated: {}\n    runtime:   {}", c.algorithm,
                         to_string(c.generated), to_string(c.runtime));
     if (options.structure == Structure::Shared)
-      text += fmt::format("\n        {} of {} link sections in {} shared functions",
+      text += fmt::format("\n    {} of {} link sections in {} shared functions",
                           c.shared_sections, c.sections, c.shared_functions);
   }
   if (robot.snapped) text += fmt::format("\n{}", snap_text(*robot.snapped));
   return fmt::format("{}\n{}", text, conditioning);
+}
+
+const char* extent_text(Extent e) {
+  return e == Extent::Nq ? "nq" : e == Extent::Nv ? "nv" : "nv * nv";
+}
+
+/// "void name(a, b, ...) noexcept" wrapped at 100 columns, continuation lines under the first
+/// parameter.
+std::string declaration(const std::string& name, const std::vector<std::string>& parameters) {
+  const std::string head = fmt::format("void {}(", name);
+  const std::size_t indent = head.size();
+  std::string text = head;
+  std::size_t column = indent;
+  for (std::size_t k = 0; k < parameters.size(); ++k) {
+    const std::string item =
+        fmt::format("{}{}", parameters[k], k + 1 < parameters.size() ? ", " : ") noexcept");
+    if (column + item.size() > 100 && column > indent) {
+      while (text.back() == ' ') text.pop_back();
+      text += fmt::format("\n{:{}}", "", indent);
+      column = indent;
+    }
+    text += item;
+    column += item.size();
+  }
+  return text;
+}
+
+/// The generated function's parameters: the inputs, with `trig` after q in the _trig form, then
+/// the outputs.
+std::vector<std::string> parameters(const AlgorithmSpec<double>& spec, const std::string& scalar,
+                                    bool trig) {
+  std::vector<std::string> out;
+  for (const ArraySpec& a : spec.inputs) {
+    out.push_back(fmt::format("const {} {}[{}]", scalar, a.name, extent_text(a.extent)));
+    if (trig && a.name == "q") out.push_back("const JointTrig& trig");
+  }
+  for (const ArraySpec& a : spec.outputs)
+    out.push_back(fmt::format("{} {}[{}]", scalar, a.name, extent_text(a.extent)));
+  return out;
+}
+
+/// The header's list of the arrays that the requested functions take, each once.
+std::string array_docs(const std::vector<Algorithm>& algorithms, const std::string& free_joints) {
+  std::vector<std::string_view> seen;
+  std::string text;
+  for (const Algorithm& name : algorithms) {
+    const AlgorithmSpec<double>& spec = algorithm_spec(name);
+    std::vector<ArraySpec> arrays = spec.inputs;
+    arrays.insert(arrays.end(), spec.outputs.begin(), spec.outputs.end());
+    for (const ArraySpec& a : arrays) {
+      if (std::find(seen.begin(), seen.end(), a.name) != seen.end()) continue;
+      seen.push_back(a.name);
+      text += fmt::format("///   {:<12}{}{}\n", fmt::format("{}[{}]", a.name, extent_text(a.extent)),
+                          a.meaning, a.name == "q" ? free_joints : "");
+    }
+  }
+  if (!text.empty()) text.pop_back();
+  return text;
 }
 
 template <class T>
@@ -136,7 +194,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
 
   Generated result;
   const bool with_aba = std::find(options.algorithms.begin(), options.algorithms.end(),
-                                  Algorithm::Aba) != options.algorithms.end();
+                                  "aba") != options.algorithms.end();
   const auto step = [&](const std::string& text) {
     if (options.progress) options.progress(text);
   };
@@ -147,12 +205,11 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   result.warnings =
       precision_warnings(result.conditioning, with_aba, std::is_same_v<T, float>);
   std::string declarations, definitions, cases;
-  for (const Algorithm algorithm : options.algorithms) {
-    const std::string a = algorithm_name(algorithm);
+  for (const Algorithm& a : options.algorithms) {
     step(fmt::format("tracing {} ({})", a, scalar));
     // the runtime's count first, so that its unsimplified trace is gone before the other's
-    const OpCounts runtime = count_ops(trace<T>(algorithm, model, false), false);
-    const Program<T> program = trace<T>(algorithm, model, true);
+    const OpCounts runtime = count_ops(trace<T>(a, model, false), false);
+    const Program<T> program = trace<T>(a, model, true);
     if (const int id = first_non_finite_constant(program); id >= 0) {
       const Node<T>& node = program.graph.nodes[id];
       throw InputError(fmt::format(
@@ -166,14 +223,35 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     }
     const OpCounts generated = count_ops(program);
     const EmittedCode code = emit_code(program, model, options.structure);
-    result.counts.push_back({algorithm, generated, runtime, code.sections, code.shared_sections,
+    result.counts.push_back({a, generated, runtime, code.sections, code.shared_sections,
                              code.shared_functions});
-    declarations += fill(a + ".hpp.in", {{"scalar", scalar}}) + "\n";
+
+    const AlgorithmSpec<double>& spec = algorithm_spec(a);
+    std::string trig_arguments, arguments;
+    for (const ArraySpec& x : spec.inputs) {
+      trig_arguments += fmt::format("{}{}", trig_arguments.empty() ? "" : ", ", x.name);
+      if (x.name == "q") trig_arguments += ", trig";
+    }
+    for (const ArraySpec& y : spec.outputs) trig_arguments += fmt::format(", {}", y.name);
+    for (std::size_t k = 0; k < spec.inputs.size(); ++k)
+      arguments += fmt::format("{}x[{}].data()", k == 0 ? "" : ", ", k);
+    for (std::size_t k = 0; k < spec.outputs.size(); ++k)
+      arguments += fmt::format(", y[{}].data()", k);
+    const std::string summary(spec.summary), call = declaration(a, parameters(spec, scalar, false)),
+        trig_call = declaration(a + "_trig", parameters(spec, scalar, true));
+    declarations += fill("function.hpp.in", {{"summary", summary},
+                                             {"declaration", call},
+                                             {"trig_declaration", trig_call}}) +
+                    "\n";
     if (!code.helpers.empty()) definitions += "\n" + code.helpers;
-    definitions += fill(a + ".cpp.in", {{"scalar", scalar},
-                                        {"counts", to_string(generated)},
-                                        {"body", code.body}});
-    cases += fill(a + "_check.cpp.in", {{"namespace", ns}});
+    definitions += fill("function.cpp.in", {{"name", a},
+                                            {"summary", summary},
+                                            {"declaration", call},
+                                            {"trig_declaration", trig_call},
+                                            {"trig_arguments", trig_arguments},
+                                            {"counts", to_string(generated)},
+                                            {"body", code.body}});
+    cases += fill("function_check.cpp.in", {{"name", a}, {"namespace", ns}, {"arguments", arguments}});
   }
   if (!declarations.empty()) declarations.pop_back();
 
@@ -209,7 +287,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                                 {"nq", std::to_string(model.nq)},
                                 {"nv", std::to_string(model.nv)},
                                 {"joint_names", joint_names},
-                                {"free_joints", free_joints},
+                                {"arrays", array_docs(options.algorithms, free_joints)},
                                 {"declarations", declarations}})});
   result.files.push_back({ns + "_dynamics.cpp", fill("dynamics.cpp.in", {{"banner", commented(banner, "//")},
                                                                         {"name", ns},
@@ -275,11 +353,11 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
 }
 
 Generated generate(const Robot& robot, const GenerateOptions& options) {
-  const auto requested = [&](Algorithm a) {
+  const auto requested = [&](const char* a) {
     return std::find(options.algorithms.begin(), options.algorithms.end(), a) !=
            options.algorithms.end();
   };
-  if (requested(Algorithm::Crba)) {
+  if (requested("crba")) {
     const long long steps = crba_column_steps(robot.model);
     if (steps > max_crba_column_steps)
       throw InputError(fmt::format(
@@ -297,10 +375,10 @@ Generated generate(const Robot& robot, const GenerateOptions& options) {
                                    robot.path, e.what()));
     }
   }
-  if (requested(Algorithm::Aba) && options.progress)
+  if (requested("aba") && options.progress)
     options.progress("checking that ABA is defined");
-  for (const Algorithm a : options.algorithms)
-    if (a == Algorithm::Aba) {
+  for (const Algorithm& a : options.algorithms)
+    if (a == "aba") {
       const std::vector<int> joints = joints_blocking_aba(robot.model);
       if (joints.empty()) {
         const std::vector<int> in_float = joints_blocking_aba_in_float(robot.model);

@@ -18,7 +18,7 @@ inline constexpr const char* version = "0.1.0";
 
 struct GenerateOptions {
   std::string name;                     // file prefix and C++ namespace
-  std::vector<Algorithm> algorithms{Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba};
+  std::vector<Algorithm> algorithms{"rnea", "crba", "aba"};
   bool single_precision = false;        // float instead of double
   Structure structure = Structure::Shared;
   std::string options_text;             // the options as given, for the banner

@@ -40,24 +40,35 @@ Vec3<double> parse_gravity(const std::string& text) {
   return {g[0], g[1], g[2]};
 }
 
-std::vector<Algorithm> parse_algorithms(const std::string& text) {
-  std::vector<Algorithm> out;
+/// The comma-separated list of names in `known`, in `known`'s order whatever the order written.
+std::vector<Algorithm> parse_algorithms(const std::string& text,
+                                        const std::vector<Algorithm>& known) {
+  std::string names;
+  for (const Algorithm& a : known) names += (names.empty() ? "" : ", ") + a;
+  std::vector<Algorithm> listed;
   std::stringstream s(text);
   std::string item;
-  while (std::getline(s, item, ',')) {
-    Algorithm a;
-    if (item == "rnea") a = Algorithm::Rnea;
-    else if (item == "crba") a = Algorithm::Crba;
-    else if (item == "aba") a = Algorithm::Aba;
+  while (std::getline(s, item, ','))
+    if (std::find(known.begin(), known.end(), item) == known.end())
+      throw InputError(fmt::format("--algorithms {}: unknown algorithm '{}' ({})", text,
+                                   safe_text(item), names));
     else
-      throw InputError(fmt::format("--algorithms {}: unknown algorithm '{}' (rnea, crba, aba)",
-                                   text, item));
-    if (std::find(out.begin(), out.end(), a) == out.end()) out.push_back(a);
-  }
-  if (out.empty()) throw InputError("--algorithms: name at least one of rnea, crba, aba");
+      listed.push_back(item);
+  if (listed.empty()) throw InputError("--algorithms: name at least one of " + names);
   // always in the same order, so the output does not depend on how the list was written
-  std::sort(out.begin(), out.end());
+  std::vector<Algorithm> out;
+  for (const Algorithm& a : known)
+    if (std::find(listed.begin(), listed.end(), a) != listed.end()) out.push_back(a);
   return out;
+}
+
+/// What dyngen report measures: the algorithms its harness knows.
+const std::vector<Algorithm> report_algorithms{"rnea", "crba", "aba"};
+
+std::string comma_list(const std::vector<Algorithm>& names) {
+  std::string text;
+  for (const Algorithm& a : names) text += (text.empty() ? "" : ",") + a;
+  return text;
 }
 
 /// A number in [lo, hi] (an integer if `integer`): CLI11's Range lets NaN through (no
@@ -219,7 +230,8 @@ int report_main(int argc, char** argv) {
   app.add_option("-o,--output", output,
                  "output directory (created if missing); the harness is built in DIR/harness")
       ->required();
-  app.add_option("--algorithms", algorithms, "comma-separated subset of rnea,crba,aba")
+  app.add_option("--algorithms", algorithms,
+                 "comma-separated subset of " + comma_list(report_algorithms))
       ->capture_default_str();
   app.add_option("--states", options.states, "random states for the errors")
       ->check(number_in(1, 10000000, true))
@@ -239,7 +251,7 @@ int report_main(int argc, char** argv) {
   app.add_flag("-q,--quiet", options.quiet, "print errors and warnings only");
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen report", [&] {
-    options.algorithms = parse_algorithms(algorithms);
+    options.algorithms = parse_algorithms(algorithms, report_algorithms);
     options.model_flags = flags.text();
     options.package_dir = package_dir();
     options.command = "dyngen report";
@@ -269,7 +281,8 @@ int main(int argc, char** argv) {
   bool quiet = false, force = false;
   app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
   app.add_option("-o,--output", output, "output directory (created if missing)")->required();
-  app.add_option("--algorithms", algorithms, "comma-separated subset of rnea,crba,aba")
+  app.add_option("--algorithms", algorithms,
+                 "comma-separated subset of " + comma_list(algorithm_names()))
       ->capture_default_str();
   app.add_option("--scalar", scalar, "scalar type of the generated code")
       ->check(CLI::IsMember({"double", "float"}))
@@ -293,7 +306,7 @@ int main(int argc, char** argv) {
   return run_reporting_errors("dyngen", [&] {
     const LoadOptions load = flags.load_options();
     GenerateOptions options;
-    options.algorithms = parse_algorithms(algorithms);
+    options.algorithms = parse_algorithms(algorithms, algorithm_names());
     options.single_precision = scalar == "float";
     options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
 
@@ -309,9 +322,7 @@ int main(int argc, char** argv) {
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
     options.name = identifier(name.empty() ? robot.name : name);
 
-    std::string algorithm_list;
-    for (const Algorithm a : options.algorithms)
-      algorithm_list += (algorithm_list.empty() ? "" : ",") + std::string(algorithm_name(a));
+    const std::string algorithm_list = comma_list(options.algorithms);
     const Vec3<double>& g = robot.model.gravity;
     options.options_text =
         fmt::format("--algorithms {} --scalar {} --structure {} --gravity {},{},{} --name {}",
@@ -337,8 +348,8 @@ int main(int argc, char** argv) {
     if (!quiet) {
       fmt::print("operations per call, generated vs runtime (add+sub, mul, div, neg, sin, cos):\n");
       for (const FunctionCounts& c : generated.counts)
-        fmt::print("  {:<4}  {:>7} vs {:>7}  ({:.0f}% removed)   generated: {}\n",
-                   algorithm_name(c.algorithm), c.generated.total(), c.runtime.total(),
+        fmt::print("  {:<8} {:>7} vs {:>7}  ({:.0f}% removed)   generated: {}\n",
+                   c.algorithm, c.generated.total(), c.runtime.total(),
                    100.0 * (1.0 - double(c.generated.total()) / double(c.runtime.total())),
                    to_string(c.generated));
       if (robot.snapped) fmt::print("{}\n", snap_text(*robot.snapped));

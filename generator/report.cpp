@@ -69,7 +69,7 @@ numerics::Conditioning write_variant(const Robot& robot, const ReportOptions& op
   g.algorithms = options.algorithms;
   // ABA in float is left out where the float model moves no inertia at some joint
   if (single && !joints_blocking_aba_in_float(robot.model).empty())
-    g.algorithms.erase(std::remove(g.algorithms.begin(), g.algorithms.end(), Algorithm::Aba),
+    g.algorithms.erase(std::remove(g.algorithms.begin(), g.algorithms.end(), "aba"),
                        g.algorithms.end());
   g.single_precision = single;
   g.options_text = options.model_flags;
@@ -206,7 +206,7 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   };
 
   const std::vector<int> blocking_in_float = joints_blocking_aba_in_float(robot.model);
-  const bool float_aba = has(options.algorithms, Algorithm::Aba) && blocking_in_float.empty();
+  const bool float_aba = has(options.algorithms, "aba") && blocking_in_float.empty();
   step(1, "generating the code: double, float, double for FMA, double for fast-math");
   const numerics::Conditioning c =
       write_variant(robot, options, name, false, work / "double", true);
@@ -224,9 +224,9 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
                   {{"banner", "// " + banner},
                    {"name", name},
                    {"robot", safe_text(robot.name)},
-                   {"rnea", has(options.algorithms, Algorithm::Rnea) ? "1" : "0"},
-                   {"crba", has(options.algorithms, Algorithm::Crba) ? "1" : "0"},
-                   {"aba", has(options.algorithms, Algorithm::Aba) ? "1" : "0"},
+                   {"rnea", has(options.algorithms, "rnea") ? "1" : "0"},
+                   {"crba", has(options.algorithms, "crba") ? "1" : "0"},
+                   {"aba", has(options.algorithms, "aba") ? "1" : "0"},
                    {"aba_float", float_aba ? "1" : "0"}}));
 
   step(2, fmt::format("configuring the harness in {}", work.string()));
@@ -273,8 +273,8 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
       markdown_code(robot.name), markdown_code(report["robot_file"].get<std::string>()),
       robot.sha256, robot.model.nv, robot.model.nq,
       options.model_flags.empty() ? "" : ", options " + markdown_code(options.model_flags),
-      version, safe_text(conditioning_text(c, has(options.algorithms, Algorithm::Aba)), true));
-  if (has(options.algorithms, Algorithm::Aba) && !float_aba)
+      version, safe_text(conditioning_text(c, has(options.algorithms, "aba")), true));
+  if (has(options.algorithms, "aba") && !float_aba)
     summary += fmt::format(
         "\n\nNo generated float ABA: once the model's constants are rounded to float, these "
         "joints move no inertia, so it cannot be generated (the runtime's float ABA divides by "

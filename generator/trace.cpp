@@ -2,24 +2,26 @@
 
 #include <cmath>
 #include <span>
-
-#include "dyngen/aba.hpp"
-#include "dyngen/crba.hpp"
-#include "dyngen/rnea.hpp"
+#include <stdexcept>
 
 namespace dyngen::gen {
 
-const char* algorithm_name(Algorithm a) {
-  switch (a) {
-    case Algorithm::Rnea: return "rnea";
-    case Algorithm::Crba: return "crba";
-    case Algorithm::Aba: return "aba";
-  }
-  return "?";
+std::vector<Algorithm> algorithm_names() {
+  std::vector<Algorithm> names;
+  for (const AlgorithmSpec<double>& a : algorithm_table<double>()) names.emplace_back(a.name);
+  return names;
+}
+
+const AlgorithmSpec<double>& algorithm_spec(const Algorithm& name) {
+  const AlgorithmSpec<double>* spec = find_algorithm<double>(name);
+  if (!spec) throw std::invalid_argument("no algorithm named '" + name + "'");
+  return *spec;
 }
 
 template <class T>
-Program<T> trace(Algorithm algorithm, const Model<double>& model, bool simplify) {
+Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool simplify) {
+  const AlgorithmSpec<Sym<T>>* spec = find_algorithm<Sym<T>>(algorithm);
+  if (!spec) throw std::invalid_argument("no algorithm named '" + algorithm + "'");
   Program<T> program;
   program.algorithm = algorithm;
   program.graph = Graph<T>(simplify);
@@ -28,39 +30,25 @@ Program<T> trace(Algorithm algorithm, const Model<double>& model, bool simplify)
   // the same conversion the check harness applies: double -> T -> constant nodes
   const Model<Sym<T>> m = model.cast<T>().template cast<Sym<T>>();
   Workspace<Sym<T>> ws(m);
-  const int n = model.nv;
-  auto inputs = [&](const char* name, int size) {
-    program.input_arrays.push_back(name);
-    std::vector<Sym<T>> x;
-    for (int i = 0; i < size; ++i) x.push_back(Sym<T>::node(g.input(name, i)));
-    return x;
-  };
-  std::vector<Sym<T>> out;
-  switch (algorithm) {
-    case Algorithm::Rnea: {
-      const auto q = inputs("q", model.nq), v = inputs("v", n), a = inputs("a", n);
-      out.resize(n);
-      rnea<Sym<T>>(m, ws, q, v, a, out);
-      program.output_array = "tau";
-      break;
-    }
-    case Algorithm::Crba: {
-      const auto q = inputs("q", model.nq);
-      out.resize(static_cast<std::size_t>(n) * n);
-      crba<Sym<T>>(m, ws, q, out);
-      program.output_array = "M";
-      break;
-    }
-    case Algorithm::Aba: {
-      const auto q = inputs("q", model.nq), v = inputs("v", n), tau = inputs("tau", n);
-      out.resize(n);
-      aba<Sym<T>>(m, ws, q, v, tau, out);
-      program.output_array = "qdd";
-      break;
-    }
+  const auto size = [&](const ArraySpec& a) { return extent_size(a.extent, model.nq, model.nv); };
+
+  std::vector<std::vector<Sym<T>>> in, out;
+  for (const ArraySpec& a : spec->inputs) {
+    program.inputs.push_back({a, size(a)});
+    const std::string name(a.name);
+    std::vector<Sym<T>>& x = in.emplace_back();
+    for (std::size_t k = 0; k < size(a); ++k)
+      x.push_back(Sym<T>::node(g.input(name, static_cast<int>(k))));
   }
-  program.output_size = static_cast<int>(out.size());
-  for (const Sym<T>& s : out) program.outputs.push_back(s.id);
+  for (const ArraySpec& a : spec->outputs) {
+    program.outputs.push_back({a, size(a)});
+    out.emplace_back(size(a));
+  }
+  std::vector<std::span<const Sym<T>>> in_spans(in.begin(), in.end());
+  std::vector<std::span<Sym<T>>> out_spans(out.begin(), out.end());
+  spec->call(m, ws, in_spans, out_spans);
+  for (const std::vector<Sym<T>>& y : out)
+    for (const Sym<T>& s : y) program.stored.push_back(s.id);
   return program;
 }
 
@@ -68,7 +56,7 @@ template <class T>
 int first_non_finite_constant(const Program<T>& program) {
   const auto& nodes = program.graph.nodes;
   std::vector<bool> live(nodes.size(), false);
-  for (const int id : program.outputs) live[id] = true;
+  for (const int id : program.stored) live[id] = true;
   int first = -1;
   for (int id = static_cast<int>(nodes.size()) - 1; id >= 0; --id) {
     if (!live[id]) continue;
@@ -81,7 +69,7 @@ int first_non_finite_constant(const Program<T>& program) {
 
 template int first_non_finite_constant<double>(const Program<double>&);
 template int first_non_finite_constant<float>(const Program<float>&);
-template Program<double> trace<double>(Algorithm, const Model<double>&, bool);
-template Program<float> trace<float>(Algorithm, const Model<double>&, bool);
+template Program<double> trace<double>(const Algorithm&, const Model<double>&, bool);
+template Program<float> trace<float>(const Algorithm&, const Model<double>&, bool);
 
 }  // namespace dyngen::gen

@@ -4,24 +4,36 @@
 #include <string>
 #include <vector>
 
+#include "dyngen/algorithms.hpp"
 #include "dyngen/model.hpp"
 #include "symbolic.hpp"
 
 namespace dyngen::gen {
 
-enum class Algorithm { Rnea, Crba, Aba };
+/// An algorithm of the runtime's table (dyngen/algorithms.hpp), by its name: "rnea".
+using Algorithm = std::string;
 
-const char* algorithm_name(Algorithm a);
+/// The names in the runtime's table, in its order.
+std::vector<Algorithm> algorithm_names();
 
-/// One traced function: its graph, the input arrays it reads and the nodes it stores.
+/// The table's entry for name (the same for every scalar but its call); throws
+/// std::invalid_argument for a name not in it.
+const AlgorithmSpec<double>& algorithm_spec(const Algorithm& name);
+
+/// An array of a traced function with its length for the model.
+struct ProgramArray {
+  ArraySpec spec;
+  std::size_t size;
+};
+
+/// One traced function: its graph, the arrays it reads and the nodes it stores.
 template <class T>
 struct Program {
   Algorithm algorithm;
   Graph<T> graph;
-  std::vector<std::string> input_arrays;  // in signature order, each of length nv
-  std::string output_array;
-  int output_size = 0;
-  std::vector<int> outputs;  // node stored in output_array[k]
+  std::vector<ProgramArray> inputs;   // in signature order
+  std::vector<ProgramArray> outputs;  // in signature order, after the inputs
+  std::vector<int> stored;            // node stored in each output entry, output by output
 };
 
 /// The first constant that an output depends on and that is not finite, or -1. The trace computes
@@ -33,6 +45,6 @@ int first_non_finite_constant(const Program<T>& program);
 /// Traces `algorithm` on the model converted to T. With simplify = false the graph holds
 /// every operation the runtime performs for the same call, for counting.
 template <class T>
-Program<T> trace(Algorithm algorithm, const Model<double>& model, bool simplify = true);
+Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool simplify = true);
 
 }  // namespace dyngen::gen

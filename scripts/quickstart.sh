@@ -9,7 +9,7 @@ start=$SECONDS
 scripts/install_deps.sh main
 jobs=$(nproc)
 
-echo "== building dyngen in build/ (about 3 minutes on 2 cores the first time)"
+echo "== building dyngen in build/ (about a minute on 2 cores the first time)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDYNGEN_BUILD_TESTS=OFF >/dev/null
 cmake --build build --target dyngen -j "$jobs" >/dev/null
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Rewrites generated/ with the dyngen in build/ (the golden test compares against it).
+# Rewrites generated/ with the dyngen in build/ (the golden test, tests/generated/CMakeLists.txt,
+# compares against it with the same options).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake --build build --target dyngen -j "$(nproc)" >/dev/null
-build/dyngen examples/ur5.urdf -o generated/ur5 --quiet 2>/dev/null
+build/dyngen examples/ur5.urdf -o generated/ur5 --quiet --algorithms rnea,crba,aba,gravity,nle 2>/dev/null
 build/dyngen tests/models/planar5.yaml -o generated/planar5 --quiet

@@ -3,15 +3,18 @@
 // Robot 'planar5': 5 joints.
 // Options: --algorithms rnea,crba,aba --scalar double --structure shared --gravity 0,-9.81,0 --name planar5
 // Operations per call (add counts add and sub):
-//   rnea  generated: add 88, mul 107, div 0, neg 0, sin 4, cos 4
-//         runtime:   add 697, mul 823, div 0, neg 3, sin 4, cos 4
-//         0 of 9 link sections in 0 shared functions
-//   crba  generated: add 39, mul 31, div 0, neg 1, sin 3, cos 3
-//         runtime:   add 609, mul 784, div 0, neg 0, sin 4, cos 4
-//         0 of 14 link sections in 0 shared functions
-//   aba   generated: add 172, mul 199, div 4, neg 0, sin 4, cos 4
-//         runtime:   add 1708, mul 2016, div 5, neg 18, sin 4, cos 4
-//         0 of 14 link sections in 0 shared functions
+//   rnea
+//     generated: add 88, mul 107, div 0, neg 0, sin 4, cos 4
+//     runtime:   add 697, mul 823, div 0, neg 3, sin 4, cos 4
+//     0 of 9 link sections in 0 shared functions
+//   crba
+//     generated: add 39, mul 31, div 0, neg 1, sin 3, cos 3
+//     runtime:   add 609, mul 784, div 0, neg 0, sin 4, cos 4
+//     0 of 14 link sections in 0 shared functions
+//   aba
+//     generated: add 172, mul 199, div 4, neg 0, sin 4, cos 4
+//     runtime:   add 1708, mul 2016, div 5, neg 18, sin 4, cos 4
+//     0 of 14 link sections in 0 shared functions
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 6.7e+02, max 2.6e+03: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.025 (joint 'link1_joint'), articulated inertias span 81:
@@ -25,7 +28,9 @@
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -44,10 +49,8 @@ constexpr int random_states = 10000;
 constexpr int extreme_states = 2000;
 constexpr int all_states = random_states + extreme_states;
 
-/// q, v and a third array (a for rnea, tau for aba) for state number s.
-struct State {
-  std::vector<Scalar> q, v, x;
-};
+using Arrays = std::vector<std::vector<Scalar>>;
+using Spec = dyngen::AlgorithmSpec<Scalar>;
 
 const dyngen::Model<Scalar> model = planar5::runtime_model().cast<Scalar>();
 
@@ -56,30 +59,41 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
   return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }
 
-State make_state(int s) {
+Arrays sized(const std::vector<dyngen::ArraySpec>& arrays) {
+  Arrays x;
+  for (const dyngen::ArraySpec& a : arrays)
+    x.emplace_back(dyngen::extent_size(a.extent, model.nq, model.nv));
+  return x;
+}
+
+/// The inputs of `spec` for state number s: q, v and the other arrays (a, tau) random within
+/// their ranges.
+Arrays make_inputs(const Spec& spec, int s) {
   std::mt19937_64 rng(0x64796e67656e + static_cast<std::uint64_t>(s));
   const bool extreme = s >= random_states;
   // extreme states: angles from 10 to 1e6 rad, speeds up to 1e3, forces up to 1e4
   const double q_range = extreme ? std::pow(10.0, 1 + (s % 6)) : 3.2;
   const double v_range = extreme ? 1e3 : 10.0;
   const double x_range = extreme ? 1e4 : 100.0;
-  State st{std::vector<Scalar>(planar5::nq), std::vector<Scalar>(planar5::nv),
-           std::vector<Scalar>(planar5::nv)};
-  for (Scalar& q : st.q) q = static_cast<Scalar>(uniform(rng, -q_range, q_range));
-  for (Scalar& v : st.v) v = static_cast<Scalar>(uniform(rng, -v_range, v_range));
-  for (Scalar& x : st.x) x = static_cast<Scalar>(uniform(rng, -x_range, x_range));
-  // a free joint's quaternion is a unit one, as the algorithms assume: a huge one would
-  // overflow, and the contract holds for computations that stay finite
-  for (int i = 0; i < model.nbodies; ++i) {
-    if (model.joint_type[i] != dyngen::JointType::Free) continue;
-    Scalar* w = &st.q[model.q_index[i] + 3];
-    const double w0 = uniform(rng, -1, 1), w1 = uniform(rng, -1, 1), w2 = uniform(rng, -1, 1),
-                 w3 = uniform(rng, -1, 1);
-    const double norm = std::sqrt(w0 * w0 + w1 * w1 + w2 * w2 + w3 * w3);
-    w[0] = static_cast<Scalar>(w0 / norm), w[1] = static_cast<Scalar>(w1 / norm);
-    w[2] = static_cast<Scalar>(w2 / norm), w[3] = static_cast<Scalar>(w3 / norm);
+  Arrays x = sized(spec.inputs);
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const std::string_view name = spec.inputs[k].name;
+    const double range = name == "q" ? q_range : name == "v" ? v_range : x_range;
+    for (Scalar& e : x[k]) e = static_cast<Scalar>(uniform(rng, -range, range));
+    if (name != "q") continue;
+    // a free joint's quaternion is a unit one, as the algorithms assume: a huge one would
+    // overflow, and the contract holds for computations that stay finite
+    for (int i = 0; i < model.nbodies; ++i) {
+      if (model.joint_type[i] != dyngen::JointType::Free) continue;
+      Scalar* w = &x[k][model.q_index[i] + 3];
+      const double w0 = uniform(rng, -1, 1), w1 = uniform(rng, -1, 1), w2 = uniform(rng, -1, 1),
+                   w3 = uniform(rng, -1, 1);
+      const double norm = std::sqrt(w0 * w0 + w1 * w1 + w2 * w2 + w3 * w3);
+      w[0] = static_cast<Scalar>(w0 / norm), w[1] = static_cast<Scalar>(w1 / norm);
+      w[2] = static_cast<Scalar>(w2 / norm), w[3] = static_cast<Scalar>(w3 / norm);
+    }
   }
-  return st;
+  return x;
 }
 
 std::string show(Scalar x) {
@@ -99,23 +113,45 @@ bool same_bits(Scalar a, Scalar b) {
   return std::memcmp(&a, &b, sizeof(Scalar)) == 0;
 }
 
-/// The first output where the generated code and the runtime differ, with the state.
-::testing::AssertionResult same_outputs(const char* function, const char* output, int s,
-                                        const State& st, const std::vector<Scalar>& generated,
+/// The first entry where the generated code and the runtime differ, with the inputs.
+::testing::AssertionResult same_outputs(const Spec& spec, std::size_t output, int s,
+                                        const Arrays& x, const std::vector<Scalar>& generated,
                                         const std::vector<Scalar>& runtime) {
-  for (std::size_t k = 0; k < generated.size(); ++k)
+  for (std::size_t k = 0; k < generated.size(); ++k) {
     // equal NaNs would pass as equal bits, but prove nothing: the states are finite and so must
     // be the outputs
-    if (!same_bits(generated[k], runtime[k]) || !std::isfinite(generated[k]) ||
-        !std::isfinite(runtime[k]))
-      return ::testing::AssertionFailure()
-             << function << ": " << output << "[" << k << "] differs or is not finite at state "
-             << s << (s >= random_states ? " (extreme)" : " (random)") << "\n  generated "
-             << show(generated[k]) << "\n  runtime   " << show(runtime[k]) << "\n  q = "
-             << show(st.q) << "\n  v = " << show(st.v) << "\n  third input = " << show(st.x);
+    if (same_bits(generated[k], runtime[k]) && std::isfinite(generated[k]) &&
+        std::isfinite(runtime[k]))
+      continue;
+    ::testing::AssertionResult failure = ::testing::AssertionFailure();
+    failure << spec.name << ": " << spec.outputs[output].name << "[" << k
+            << "] differs or is not finite at state " << s
+            << (s >= random_states ? " (extreme)" : " (random)") << "\n  generated "
+            << show(generated[k]) << "\n  runtime   " << show(runtime[k]);
+    for (std::size_t i = 0; i < x.size(); ++i)
+      failure << "\n  " << spec.inputs[i].name << " = " << show(x[i]);
+    return failure;
+  }
   return ::testing::AssertionSuccess();
 }
 
+/// Runs the runtime's `name` and the generated one on every state and compares their outputs.
+template <class Generated>
+void check_bit_for_bit(const char* name, Generated generated) {
+  const Spec* spec = dyngen::find_algorithm<Scalar>(name);
+  ASSERT_NE(spec, nullptr) << "the runtime has no algorithm " << name;
+  dyngen::Workspace<Scalar> ws(model);
+  Arrays runtime = sized(spec->outputs), mine = sized(spec->outputs);
+  for (int s = 0; s < all_states; ++s) {
+    const Arrays x = make_inputs(*spec, s);
+    const std::vector<std::span<const Scalar>> in(x.begin(), x.end());
+    const std::vector<std::span<Scalar>> out(runtime.begin(), runtime.end());
+    spec->call(model, ws, in, out);
+    generated(x, mine);
+    for (std::size_t k = 0; k < runtime.size(); ++k)
+      ASSERT_TRUE(same_outputs(*spec, k, s, x, mine[k], runtime[k]));
+  }
+}
 
 }  // namespace
 
@@ -127,36 +163,14 @@ TEST(planar5, model_tables_match_generated_header) {
 }
 
 TEST(planar5, rnea_matches_runtime_bit_for_bit) {
-  dyngen::Workspace<Scalar> ws(model);
-  std::vector<Scalar> runtime(planar5::nv), generated(planar5::nv);
-  for (int s = 0; s < all_states; ++s) {
-    const State st = make_state(s);
-    dyngen::rnea<Scalar>(model, ws, st.q, st.v, st.x, runtime);
-    planar5::rnea(st.q.data(), st.v.data(), st.x.data(), generated.data());
-    ASSERT_TRUE(same_outputs("rnea", "tau", s, st, generated, runtime));
-  }
+  check_bit_for_bit("rnea", [](const Arrays& x, Arrays& y) { planar5::rnea(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 
 TEST(planar5, crba_matches_runtime_bit_for_bit) {
-  dyngen::Workspace<Scalar> ws(model);
-  std::vector<Scalar> runtime(planar5::nv * planar5::nv);
-  std::vector<Scalar> generated(planar5::nv * planar5::nv);
-  for (int s = 0; s < all_states; ++s) {
-    const State st = make_state(s);
-    dyngen::crba<Scalar>(model, ws, st.q, runtime);
-    planar5::crba(st.q.data(), generated.data());
-    ASSERT_TRUE(same_outputs("crba", "M", s, st, generated, runtime));
-  }
+  check_bit_for_bit("crba", [](const Arrays& x, Arrays& y) { planar5::crba(x[0].data(), y[0].data()); });
 }
 
 TEST(planar5, aba_matches_runtime_bit_for_bit) {
-  dyngen::Workspace<Scalar> ws(model);
-  std::vector<Scalar> runtime(planar5::nv), generated(planar5::nv);
-  for (int s = 0; s < all_states; ++s) {
-    const State st = make_state(s);
-    dyngen::aba<Scalar>(model, ws, st.q, st.v, st.x, runtime);
-    planar5::aba(st.q.data(), st.v.data(), st.x.data(), generated.data());
-    ASSERT_TRUE(same_outputs("aba", "qdd", s, st, generated, runtime));
-  }
+  check_bit_for_bit("aba", [](const Arrays& x, Arrays& y) { planar5::aba(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 

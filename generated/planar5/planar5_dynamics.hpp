@@ -3,15 +3,18 @@
 // Robot 'planar5': 5 joints.
 // Options: --algorithms rnea,crba,aba --scalar double --structure shared --gravity 0,-9.81,0 --name planar5
 // Operations per call (add counts add and sub):
-//   rnea  generated: add 88, mul 107, div 0, neg 0, sin 4, cos 4
-//         runtime:   add 697, mul 823, div 0, neg 3, sin 4, cos 4
-//         0 of 9 link sections in 0 shared functions
-//   crba  generated: add 39, mul 31, div 0, neg 1, sin 3, cos 3
-//         runtime:   add 609, mul 784, div 0, neg 0, sin 4, cos 4
-//         0 of 14 link sections in 0 shared functions
-//   aba   generated: add 172, mul 199, div 4, neg 0, sin 4, cos 4
-//         runtime:   add 1708, mul 2016, div 5, neg 18, sin 4, cos 4
-//         0 of 14 link sections in 0 shared functions
+//   rnea
+//     generated: add 88, mul 107, div 0, neg 0, sin 4, cos 4
+//     runtime:   add 697, mul 823, div 0, neg 3, sin 4, cos 4
+//     0 of 9 link sections in 0 shared functions
+//   crba
+//     generated: add 39, mul 31, div 0, neg 1, sin 3, cos 3
+//     runtime:   add 609, mul 784, div 0, neg 0, sin 4, cos 4
+//     0 of 14 link sections in 0 shared functions
+//   aba
+//     generated: add 172, mul 199, div 4, neg 0, sin 4, cos 4
+//     runtime:   add 1708, mul 2016, div 5, neg 18, sin 4, cos 4
+//     0 of 14 link sections in 0 shared functions
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 6.7e+02, max 2.6e+03: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.025 (joint 'link1_joint'), articulated inertias span 81:
@@ -25,10 +28,10 @@
 /// Arrays are plain C arrays of double, indexed by joint in the order of joint_names:
 ///   q[nq]       joint positions: rad (revolute), m (prismatic)
 ///   v[nv]       joint velocities
-///   a[nv]       joint accelerations (rnea input)
+///   a[nv]       joint accelerations (input of rnea)
 ///   tau[nv]     joint forces: N m (revolute), N (prismatic)
-///   qdd[nv]     joint accelerations (aba output)
 ///   M[nv * nv]  joint-space mass matrix, row-major, both triangles: M[i * nv + j]
+///   qdd[nv]     joint accelerations (output of aba)
 /// Gravity is built in: (0, -9.81, 0) m/s^2.
 namespace planar5 {
 
@@ -61,11 +64,11 @@ void rnea(const double q[nq], const double v[nv], const double a[nv], double tau
 void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double a[nv],
                double tau[nv]) noexcept;
 
-/// Joint-space mass matrix (composite rigid body algorithm), M[i * nv + j].
+/// Mass matrix M(q) (composite rigid bodies).
 void crba(const double q[nq], double M[nv * nv]) noexcept;
 void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noexcept;
 
-/// Forward dynamics (articulated-body algorithm): qdd = M(q)^-1 (tau - C(q, v) v - g(q)).
+/// Forward dynamics (articulated bodies): qdd = M(q)^-1 (tau - C(q, v) v - g(q)).
 void aba(const double q[nq], const double v[nv], const double tau[nv], double qdd[nv]) noexcept;
 void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double tau[nv],
               double qdd[nv]) noexcept;

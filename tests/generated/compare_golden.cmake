@@ -1,6 +1,6 @@
-# Runs dyngen on INPUT into SCRATCH and compares every file with GOLDEN.
+# Runs dyngen on INPUT with OPTIONS into SCRATCH and compares every file with GOLDEN.
 file(REMOVE_RECURSE ${SCRATCH})
-execute_process(COMMAND ${DYNGEN} ${INPUT} -o ${SCRATCH} --quiet RESULT_VARIABLE rc
+execute_process(COMMAND ${DYNGEN} ${INPUT} -o ${SCRATCH} --quiet ${OPTIONS} RESULT_VARIABLE rc
                 ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "dyngen failed (${rc}): ${err}")

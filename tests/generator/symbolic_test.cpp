@@ -335,13 +335,12 @@ TEST(Sym, ArithmeticRecordsIntoTheActiveGraphOnly) {
 
 TEST(DeadNodes, AreNeitherEmittedNorCounted) {
   Program<double> program;
-  program.algorithm = Algorithm::Rnea;
+  program.algorithm = "rnea";
   Graph<double>& g = program.graph;
   const int q0 = g.input("q", 0), q1 = g.input("q", 1);
   g.binary(Op::Mul, g.unary(Op::Sin, q0), q1);  // reaches no output
-  program.outputs = {g.binary(Op::Add, q0, q1)};
-  program.output_array = "tau";
-  program.output_size = 1;
+  program.stored = {g.binary(Op::Add, q0, q1)};
+  program.outputs = {{tau_array, 1}};
   const std::string body = emit_code(program, Model<double>{}, Structure::Unrolled).body;
   EXPECT_EQ(body.find("sin"), std::string::npos) << body;
   EXPECT_EQ(body.find(" * "), std::string::npos) << body;
@@ -366,7 +365,7 @@ struct TraceCase {
   bool single;  // float instead of double
 
   std::string name() const {
-    return robot.substr(0, robot.find('.')) + "_" + algorithm_name(algorithm) +
+    return robot.substr(0, robot.find('.')) + "_" + algorithm +
            (single ? "_float" : "_double");
   }
 };
@@ -393,9 +392,10 @@ void expect_traces_agree(const Model<double>& model, Algorithm algorithm) {
       inputs[k] = sample == 0 ? T(0) : uniform<T>(rng, angle ? -4 : -20, angle ? 4 : 20);
     }
     const std::vector<T> a = evaluate(full.graph, inputs), b = evaluate(simplified.graph, inputs);
-    for (int k = 0; k < full.output_size; ++k) {
-      const T x = a[full.outputs[k]], y = b[simplified.outputs[k]];
-      ASSERT_TRUE(same_bits(x, y)) << full.output_array << "[" << k << "] at sample " << sample
+    ASSERT_EQ(full.stored.size(), simplified.stored.size());
+    for (std::size_t k = 0; k < full.stored.size(); ++k) {
+      const T x = a[full.stored[k]], y = b[simplified.stored[k]];
+      ASSERT_TRUE(same_bits(x, y)) << "output entry " << k << " at sample " << sample
                                    << ": runtime " << show(x) << ", simplified " << show(y);
     }
   }
@@ -453,7 +453,7 @@ TEST_P(Traced, SimplifiedTraceHasNothingLeftToRewrite) {
 std::vector<TraceCase> trace_cases() {
   std::vector<TraceCase> cases;
   for (const char* robot : {"planar5.yaml", "ur5.urdf", "panda.urdf"})
-    for (const Algorithm a : {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba})
+    for (const Algorithm& a : algorithm_names())
       for (const bool single : {false, true}) cases.push_back({robot, a, single});
   return cases;
 }

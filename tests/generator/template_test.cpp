@@ -78,34 +78,42 @@ TEST(Template, FillsEveryPlaceholderOfEveryTemplate) {
   }
 }
 
+const std::map<std::string, std::string> check_values{
+    {"name", "gravity"}, {"namespace", "ur5"}, {"arguments", "x[0].data(), y[0].data()"}};
+
 TEST(Template, ReplacesEveryOccurrenceOfAKey) {
-  const std::string text(template_text("rnea.hpp.in"));
-  const std::string out = fill("rnea.hpp.in", {{"scalar", "long double"}});
-  EXPECT_EQ(out, replaced(text, {{"scalar", "long double"}}));
-  EXPECT_NE(out.find("const long double q[nq]"), std::string::npos) << out;
-  EXPECT_NE(out.find("long double tau[nv]"), std::string::npos) << out;
+  const std::string text(template_text("function_check.cpp.in"));
+  const std::string out = fill("function_check.cpp.in", check_values);
+  EXPECT_EQ(out, replaced(text, check_values));
+  EXPECT_NE(out.find("TEST(ur5, gravity_matches_runtime_bit_for_bit)"), std::string::npos) << out;
+  EXPECT_NE(out.find("ur5::gravity(x[0].data(), y[0].data())"), std::string::npos) << out;
 }
 
 TEST(Template, InsertsValuesVerbatimWithoutRescanningThem) {
-  const std::string value = "@scalar@ {}\\n\n%s $1 \"@\"";
-  const std::string out = fill("rnea.hpp.in", {{"scalar", value}});
-  EXPECT_EQ(out, replaced(std::string(template_text("rnea.hpp.in")), {{"scalar", value}}));
-  EXPECT_NE(out.find(value), std::string::npos);
+  std::map<std::string, std::string> values = check_values;
+  values["name"] = "@arguments@ {}\\n\n%s $1 \"@\"";
+  const std::string out = fill("function_check.cpp.in", values);
+  EXPECT_EQ(out, replaced(std::string(template_text("function_check.cpp.in")), values));
+  EXPECT_NE(out.find(values["name"]), std::string::npos);
 }
 
 TEST(Template, RejectsAPlaceholderWithoutAValue) {
-  const std::string message = logic_error_of([] { fill("rnea.hpp.in", {}); });
-  EXPECT_NE(message.find("rnea.hpp.in"), std::string::npos) << message;
-  EXPECT_NE(message.find("no value for @scalar@"), std::string::npos) << message;
+  std::map<std::string, std::string> values = check_values;
+  values.erase("namespace");
+  const std::string message = logic_error_of([&] { fill("function_check.cpp.in", values); });
+  EXPECT_NE(message.find("function_check.cpp.in"), std::string::npos) << message;
+  EXPECT_NE(message.find("no value for @namespace@"), std::string::npos) << message;
   // a misspelt key is both: the placeholder lacks its value
-  const std::string misspelt = logic_error_of([] { fill("rnea.hpp.in", {{"scaler", "double"}}); });
-  EXPECT_NE(misspelt.find("@scalar@"), std::string::npos) << misspelt;
+  values["namespce"] = "ur5";
+  const std::string misspelt = logic_error_of([&] { fill("function_check.cpp.in", values); });
+  EXPECT_NE(misspelt.find("@namespace@"), std::string::npos) << misspelt;
 }
 
 TEST(Template, RejectsAValueWithoutAPlaceholder) {
-  const std::string message = logic_error_of(
-      [] { fill("rnea.hpp.in", {{"scalar", "double"}, {"body", "tau[0] = 0;"}}); });
-  EXPECT_NE(message.find("rnea.hpp.in"), std::string::npos) << message;
+  std::map<std::string, std::string> values = check_values;
+  values["body"] = "tau[0] = 0;";
+  const std::string message = logic_error_of([&] { fill("function_check.cpp.in", values); });
+  EXPECT_NE(message.find("function_check.cpp.in"), std::string::npos) << message;
   EXPECT_NE(message.find("@body@ is not used"), std::string::npos) << message;
 }
 

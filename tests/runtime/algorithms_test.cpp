@@ -10,7 +10,10 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <numbers>
+#include <set>
+#include <string_view>
 
 #include "dyngen/dyngen.hpp"
 #include "test_support.hpp"
@@ -48,6 +51,12 @@ class Dynamics {
     std::vector<S> M(nv() * nv());
     dyngen::crba<S>(model_, ws_, span(q), M);
     return test::to_eigen(M, nv());
+  }
+
+  VectorX<S> nle(const VectorX<S>& q, const VectorX<S>& qd) {
+    VectorX<S> h(nv());
+    dyngen::nle<S>(model_, ws_, span(q), span(qd), {h.data(), std::size_t(nv())});
+    return h;
   }
 
   VectorX<S> aba(const VectorX<S>& q, const VectorX<S>& qd, const VectorX<S>& tau) {
@@ -207,6 +216,23 @@ TEST_P(Algorithms, CrbaMatchesRneaColumns) {
   if (is_planar5()) {
     EXPECT_LT(worst, chapter_crba_bound);
   }
+}
+
+TEST_P(Algorithms, MassMatrixAndNonlinearEffectsMakeRnea) {
+  // RNEA(q, qd, qdd) = M(q) qdd + h(q, qd): CRBA's M and nle's h against RNEA
+  Dynamics<double> dyn(GetParam().make());
+  test::Random rng(GetParam().seed);
+  const int n = dyn.nv();
+  double worst_scaled = 0;
+  for (int k = 0; k < states_per_model; ++k) {
+    const Sample x = sample(dyn, rng);
+    const Vector h = dyn.nle(x.q, x.qd);
+    const Vector tau = dyn.rnea(x.q, x.qd, x.qdd);
+    const double scale = max_abs(x.M) * x.qdd.cwiseAbs().maxCoeff() + h.cwiseAbs().maxCoeff();
+    worst_scaled = worse(worst_scaled, max_abs(x.M * x.qdd + h - tau) / (n * eps * scale));
+  }
+  report("M qdd + h vs RNEA error / (n eps (|M| |qdd| + |h|))", worst_scaled);
+  EXPECT_LE(worst_scaled, mass_matrix_bound_neps);
 }
 
 TEST_P(Algorithms, MassMatrixIsSymmetricPositiveDefinite) {
@@ -462,6 +488,27 @@ TEST(Romeo, UnlockedMassMatrixHasExactZeroColumns) {
   EXPECT_EQ(zero_columns, 24);
   options.lock_massless = true;
   EXPECT_EQ(gen::load_robot(test::model_path("romeo.urdf"), options).model.nv, model.nv - 24);
+}
+
+TEST(AlgorithmTable, NamesAndArraysAreConsistent) {
+  // the generator puts trig after q and the check draws each array by its name: every entry
+  // reads q first, names are unique, and an array's name fixes its extent
+  std::map<std::string_view, Extent> extent;
+  std::set<std::string_view> names;
+  for (const AlgorithmSpec<double>& a : algorithm_table<double>()) {
+    EXPECT_TRUE(names.insert(a.name).second) << a.name;
+    ASSERT_FALSE(a.inputs.empty()) << a.name;
+    EXPECT_EQ(a.inputs.front().name, "q") << a.name;
+    EXPECT_FALSE(a.outputs.empty()) << a.name;
+    std::vector<ArraySpec> arrays = a.inputs;
+    arrays.insert(arrays.end(), a.outputs.begin(), a.outputs.end());
+    std::set<std::string_view> in_signature;
+    for (const ArraySpec& x : arrays) {
+      EXPECT_TRUE(in_signature.insert(x.name).second) << a.name << " takes " << x.name << " twice";
+      const auto [it, added] = extent.emplace(x.name, x.extent);
+      EXPECT_EQ(it->second, x.extent) << a.name << ": " << x.name;
+    }
+  }
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
-// The dyngen runtime: spatial algebra, models, and the RNEA, CRBA and ABA algorithms,
+// The dyngen runtime: spatial algebra, models, and the algorithms (RNEA, CRBA, ABA, ...),
 // templated on the scalar type.
 #pragma once
 
 #include "dyngen/aba.hpp"
+#include "dyngen/algorithms.hpp"
 #include "dyngen/crba.hpp"
 #include "dyngen/kinematics.hpp"
 #include "dyngen/model.hpp"

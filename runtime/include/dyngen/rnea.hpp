@@ -45,4 +45,18 @@ void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
   }
 }
 
+/// Generalised gravity g(q) = rnea(q, 0, 0): the torques that hold the robot still.
+template <class S>
+void gravity(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<S> g) {
+  rnea<S>(model, ws, q, ws.zero, ws.zero, g);
+}
+
+/// Nonlinear effects h(q, v) = C(q, v) v + g(q) = rnea(q, v, 0): Coriolis, centrifugal and
+/// gravity torques.
+template <class S>
+void nle(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<const S> qd,
+         std::span<S> h) {
+  rnea<S>(model, ws, q, qd, ws.zero, h);
+}
+
 }  // namespace dyngen

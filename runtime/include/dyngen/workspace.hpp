@@ -12,7 +12,8 @@ struct Workspace {
   explicit Workspace(const Model<S>& model)
       : Xup(model.nbodies), X0(model.nbodies), v(model.nbodies), a(model.nbodies), c(model.nbodies),
         f(model.nbodies), Ic(model.nbodies), IA(model.nbodies), pA(model.nbodies),
-        U(model.nbodies), D(model.nbodies), Dinv(model.nbodies), u(model.nbodies) {}
+        U(model.nbodies), D(model.nbodies), Dinv(model.nbodies), u(model.nbodies),
+        zero(model.nv, S(0)) {}
 
   std::vector<Xform<S>> Xup;              // [nbodies] parent to body transform
   std::vector<Xform<S>> X0;               // [nbodies] base to body (forward_kinematics)
@@ -27,6 +28,7 @@ struct Workspace {
   std::vector<S> D;                       // [nbodies] S^T IA S (ABA)
   std::vector<S> Dinv;                    // [nbodies] 1 / D (ABA)
   std::vector<S> u;                       // [nbodies] tau - S^T pA (ABA)
+  std::vector<S> zero;                    // [nv] zeros: the v and a of gravity() and nle()
 };
 
 }  // namespace dyngen
