@@ -85,13 +85,12 @@ Kinds dense_trace_counts(const Model<double>& model, bool with_M, bool with_bias
   if (with_M) {
     std::vector<Sym> M(n * n);
     crba<Sym>(m, ws, q, M);
-    for (const Sym& x : M) program.outputs.push_back(x.id);
+    for (const Sym& x : M) program.stored.push_back(x.id);
   }
   if (with_bias) {
-    const std::vector<Sym> zero(n);
     std::vector<Sym> h(n);
-    rnea<Sym>(m, ws, q, v, zero, h);
-    for (const Sym& x : h) program.outputs.push_back(x.id);
+    nle<Sym>(m, ws, q, v, h);
+    for (const Sym& x : h) program.stored.push_back(x.id);
   }
   return kinds(gen::count_ops(program));
 }
