@@ -40,17 +40,19 @@ Vec3<double> parse_gravity(const std::string& text) {
   return {g[0], g[1], g[2]};
 }
 
-/// The comma-separated list of names in `known`, in `known`'s order whatever the order written.
+/// The comma-separated list of names in `known`, in `known`'s order whatever the order written;
+/// "all" for every one.
 std::vector<Algorithm> parse_algorithms(const std::string& text,
                                         const std::vector<Algorithm>& known) {
   std::string names;
   for (const Algorithm& a : known) names += (names.empty() ? "" : ", ") + a;
+  if (text == "all") return known;
   std::vector<Algorithm> listed;
   std::stringstream s(text);
   std::string item;
   while (std::getline(s, item, ','))
     if (std::find(known.begin(), known.end(), item) == known.end())
-      throw InputError(fmt::format("--algorithms {}: unknown algorithm '{}' ({})", text,
+      throw InputError(fmt::format("--algorithms {}: unknown algorithm '{}' ({}, or all)", text,
                                    safe_text(item), names));
     else
       listed.push_back(item);
@@ -231,7 +233,7 @@ int report_main(int argc, char** argv) {
                  "output directory (created if missing); the harness is built in DIR/harness")
       ->required();
   app.add_option("--algorithms", algorithms,
-                 "comma-separated subset of " + comma_list(report_algorithms))
+                 "comma-separated subset of " + comma_list(report_algorithms) + ", or all")
       ->capture_default_str();
   app.add_option("--states", options.states, "random states for the errors")
       ->check(number_in(1, 10000000, true))
@@ -282,7 +284,7 @@ int main(int argc, char** argv) {
   app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
   app.add_option("-o,--output", output, "output directory (created if missing)")->required();
   app.add_option("--algorithms", algorithms,
-                 "comma-separated subset of " + comma_list(algorithm_names()))
+                 "comma-separated subset of " + comma_list(algorithm_names()) + ", or all")
       ->capture_default_str();
   app.add_option("--scalar", scalar, "scalar type of the generated code")
       ->check(CLI::IsMember({"double", "float"}))

@@ -59,6 +59,12 @@ class Dynamics {
     return h;
   }
 
+  MatrixX<S> minv(const VectorX<S>& q) {
+    std::vector<S> Minv(nv() * nv());
+    dyngen::minv<S>(model_, ws_, span(q), Minv);
+    return test::to_eigen(Minv, nv());
+  }
+
   VectorX<S> aba(const VectorX<S>& q, const VectorX<S>& qd, const VectorX<S>& tau) {
     VectorX<S> qdd(nv());
     dyngen::aba<S>(model_, ws_, span(q), span(qd), span(tau), {qdd.data(), std::size_t(nv())});
@@ -233,6 +239,32 @@ TEST_P(Algorithms, MassMatrixAndNonlinearEffectsMakeRnea) {
   }
   report("M qdd + h vs RNEA error / (n eps (|M| |qdd| + |h|))", worst_scaled);
   EXPECT_LE(worst_scaled, mass_matrix_bound_neps);
+}
+
+TEST_P(Algorithms, MinvInvertsCrbaAndMatchesAba) {
+  // minv's M^-1 against CRBA's M (M^-1 M = 1) and against ABA's columns at zero velocity
+  // and gravity (qdd = M^-1 e_c): errors in units of n eps cond(M)
+  Dynamics<double> dyn(GetParam().make());
+  Dynamics<double> no_gravity(without_gravity(GetParam().make()));
+  test::Random rng(GetParam().seed);
+  const int n = dyn.nv();
+  const Vector zero = Vector::Zero(n);
+  double worst_identity = 0, worst_aba = 0;
+  for (int k = 0; k < states_per_model; ++k) {
+    const Sample x = sample(dyn, rng);
+    const Matrix Minv = dyn.minv(x.q);
+    EXPECT_EQ(max_abs(Minv - Minv.transpose()), 0.0);
+    const double cond = x.lambda_max / x.lambda_min;
+    worst_identity = worse(worst_identity,
+                           max_abs(Minv * x.M - Matrix::Identity(n, n)) / (n * eps * cond));
+    Matrix columns(n, n);
+    for (int c = 0; c < n; ++c) columns.col(c) = no_gravity.aba(x.q, zero, Vector::Unit(n, c));
+    worst_aba = worse(worst_aba, max_abs(Minv - columns) / (n * eps * cond * max_abs(Minv)));
+  }
+  report("minv M - 1 / (n eps cond(M))", worst_identity);
+  report("minv vs ABA columns / (n eps cond(M) max|Minv|)", worst_aba);
+  EXPECT_LE(worst_identity, qdd_bound_neps);
+  EXPECT_LE(worst_aba, qdd_bound_neps);
 }
 
 TEST_P(Algorithms, MassMatrixIsSymmetricPositiveDefinite) {

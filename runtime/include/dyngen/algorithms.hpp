@@ -9,8 +9,11 @@
 #include <vector>
 
 #include "dyngen/aba.hpp"
+#include "dyngen/aba_derivatives.hpp"
 #include "dyngen/crba.hpp"
+#include "dyngen/minv.hpp"
 #include "dyngen/rnea.hpp"
+#include "dyngen/rnea_derivatives.hpp"
 
 namespace dyngen {
 
@@ -38,6 +41,18 @@ inline constexpr ArraySpec qdd_array{"qdd", Extent::Nv, "joint accelerations (ou
 inline constexpr ArraySpec M_array{"M", Extent::NvNv,
                                    "joint-space mass matrix, row-major, both triangles: M[i * nv + j]"};
 inline constexpr ArraySpec g_array{"g", Extent::Nv, "generalised gravity: tau at v = 0, a = 0"};
+inline constexpr ArraySpec dtau_dq_array{
+    "dtau_dq", Extent::NvNv,
+    "d tau / dq, row-major: dtau_dq[i * nv + j] = d tau_i / dq_j (free joints: tangent directions)"};
+inline constexpr ArraySpec dtau_dv_array{"dtau_dv", Extent::NvNv,
+                                         "d tau / dv, row-major: dtau_dv[i * nv + j] = d tau_i / dv_j"};
+inline constexpr ArraySpec Minv_array{"Minv", Extent::NvNv,
+                                      "inverse of the mass matrix, row-major, both triangles"};
+inline constexpr ArraySpec dqdd_dq_array{
+    "dqdd_dq", Extent::NvNv,
+    "d qdd / dq, row-major: dqdd_dq[i * nv + j] = d qdd_i / dq_j (free joints: tangent directions)"};
+inline constexpr ArraySpec dqdd_dv_array{"dqdd_dv", Extent::NvNv,
+                                         "d qdd / dv, row-major: dqdd_dv[i * nv + j] = d qdd_i / dv_j"};
 inline constexpr ArraySpec h_array{"h", Extent::Nv,
                                    "nonlinear effects (Coriolis, centrifugal, gravity): tau at a = 0"};
 
@@ -80,6 +95,22 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        {h_array},
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          nle<S>(m, ws, in[0], in[1], out[0]);
+       }},
+      {"minv", "Inverse of the mass matrix M(q)^-1 (articulated-body recursion, no factorisation).",
+       {q_array}, {Minv_array},
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) { minv<S>(m, ws, in[0], out[0]); }},
+      {"rnea_derivatives",
+       "Derivatives of inverse dynamics: d tau / dq and d tau / dv at (q, v, a) (d tau / da is M).",
+       {q_array, v_array, a_array}, {dtau_dq_array, dtau_dv_array},
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         rnea_derivatives<S>(m, ws, in[0], in[1], in[2], out[0], out[1]);
+       }},
+      {"aba_derivatives",
+       "Derivatives of forward dynamics: d qdd / dq, d qdd / dv and d qdd / d tau = M^-1 at "
+       "(q, v, tau).",
+       {q_array, v_array, tau_array}, {dqdd_dq_array, dqdd_dv_array, Minv_array},
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         aba_derivatives<S>(m, ws, in[0], in[1], in[2], out[0], out[1], out[2]);
        }},
   };
   return table;

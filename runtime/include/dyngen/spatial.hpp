@@ -62,6 +62,17 @@ struct ArticulatedInertia {
   Sym3<S> M;
 };
 
+/// The linear map B x = v x* (I x) - I (v x x) + x x* (I v) of a rigid-body inertia I moving
+/// with velocity v: the derivative of I's force I a + v x* I v along a change x of v, less I
+/// times the change of a. Its symmetric part is dI/dt = v x* I - I v x, a rigid-body inertia of
+/// mass 0 (hdot, Idot); the rest is x x* p with p = I v, skew. Variations add like inertias.
+template <class S>
+struct InertiaVariation {
+  Vec3<S> hdot;
+  Sym3<S> Idot;
+  Force<S> p;
+};
+
 // ---- 3-vectors and 3x3 matrices -------------------------------------------------------
 
 template <class S>
@@ -157,6 +168,14 @@ Force<S> apply_force_T(const Xform<S>& X, const Force<S>& f) {
   return {mul_T(X.E, f.ang) + cross(X.r, fp), fp};
 }
 
+/// X^-1 m = [E^T w; E^T v + r x E^T w]: a motion in child coordinates expressed in parent
+/// coordinates
+template <class S>
+Motion<S> apply_motion_inv(const Xform<S>& X, const Motion<S>& m) {
+  const Vec3<S> w = mul_T(X.E, m.ang);
+  return {w, mul_T(X.E, m.lin) + cross(X.r, w)};
+}
+
 /// X_ac = X_ab X_bc: E = E_ab E_bc, r = r_bc + E_bc^T r_ab
 template <class S>
 Xform<S> compose(const Xform<S>& X_ab, const Xform<S>& X_bc) {
@@ -240,6 +259,17 @@ ArticulatedInertia<S> articulated(const RigidInertia<S>& I) {
           Sym3<S>{I.m, I.m, I.m, zero, zero, zero}};
 }
 
+template <class S>
+Motion<S> scale(const Motion<S>& m, const S& k) {
+  return {scale(m.ang, k), scale(m.lin, k)};
+}
+
+/// f . m, the power of a force on a motion
+template <class S>
+S inner(const Force<S>& f, const Motion<S>& m) {
+  return dot(f.ang, m.ang) + dot(f.lin, m.lin);
+}
+
 /// v x m (RBDA eq. 2.31): [w x m_w; w x m_v + v x m_w]
 template <class S>
 Motion<S> cross_motion(const Motion<S>& v, const Motion<S>& m) {
@@ -290,6 +320,43 @@ ArticulatedInertia<S> operator+(const ArticulatedInertia<S>& a, const Articulate
   return {a.I + b.I, a.H + b.H, a.M + b.M};
 }
 
+
+template <class S>
+InertiaVariation<S> operator+(const InertiaVariation<S>& a, const InertiaVariation<S>& b) {
+  return {a.hdot + b.hdot, a.Idot + b.Idot, a.p + b.p};
+}
+
+/// B of a rigid-body inertia I = (m, h, I_o) moving with v = [w; u], all in one frame:
+/// hdot = w x h + m u, Idot = K + K^T with K = w x I_o - h u^T + (u . h) 1.
+template <class S>
+InertiaVariation<S> variation(const RigidInertia<S>& I, const Motion<S>& v) {
+  const Vec3<S>& w = v.ang;
+  const Vec3<S>& u = v.lin;
+  const Vec3<S>& h = I.h;
+  const S uh = dot(u, h);
+  // columns of w x I_o
+  const Vec3<S> c0 = cross(w, Vec3<S>{I.I.xx, I.I.xy, I.I.xz});
+  const Vec3<S> c1 = cross(w, Vec3<S>{I.I.xy, I.I.yy, I.I.yz});
+  const Vec3<S> c2 = cross(w, Vec3<S>{I.I.xz, I.I.yz, I.I.zz});
+  const Mat3<S> K{c0.x - h.x * u.x + uh, c1.x - h.x * u.y,      c2.x - h.x * u.z,
+                  c0.y - h.y * u.x,      c1.y - h.y * u.y + uh, c2.y - h.y * u.z,
+                  c0.z - h.z * u.x,      c1.z - h.z * u.y,      c2.z - h.z * u.z + uh};
+  return {cross(w, h) + scale(u, I.m),
+          Sym3<S>{K.xx + K.xx, K.yy + K.yy, K.zz + K.zz, K.xy + K.yx, K.xz + K.zx, K.yz + K.zy},
+          mul(I, v)};
+}
+
+/// B x
+template <class S>
+Force<S> mul(const InertiaVariation<S>& B, const Motion<S>& x) {
+  return mul(RigidInertia<S>{S(0), B.hdot, B.Idot}, x) + cross_force(x, B.p);
+}
+
+/// B^T x: the symmetric part as is, the skew part negated
+template <class S>
+Force<S> mul_T(const InertiaVariation<S>& B, const Motion<S>& x) {
+  return mul(RigidInertia<S>{S(0), B.hdot, B.Idot}, x) - cross_force(x, B.p);
+}
 
 /// The rotation of a unit quaternion (w, x, y, z), taking body to parent coordinates; its
 /// transpose is the E of the body's transform.

@@ -1,6 +1,8 @@
 // Per-call buffers of the algorithms, allocated once per model (never inside an algorithm).
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <vector>
 
 #include "dyngen/model.hpp"
@@ -13,7 +15,31 @@ struct Workspace {
       : Xup(model.nbodies), X0(model.nbodies), v(model.nbodies), a(model.nbodies), c(model.nbodies),
         f(model.nbodies), Ic(model.nbodies), IA(model.nbodies), pA(model.nbodies),
         U(model.nbodies), D(model.nbodies), Dinv(model.nbodies), u(model.nbodies),
-        zero(model.nv, S(0)) {}
+        zero(model.nv, S(0)), ov(model.nbodies), oa(model.nbodies), oIc(model.nbodies),
+        oBc(model.nbodies), oF(model.nbodies), s(model.nv), dv(model.nv), alpha(model.nv),
+        beta(model.nv), subtree_end(model.nbodies, 0), qdd(model.nv) {
+    // the columns of the joints in body i's subtree are [v_index[i], subtree_end[i])
+    for (int i = model.nbodies - 1; i >= 0; --i) {
+      subtree_end[i] = std::max(subtree_end[i], model.v_index[i] + joint_nv(model.joint_type[i]));
+      if (model.parent[i] >= 0)
+        subtree_end[model.parent[i]] = std::max(subtree_end[model.parent[i]], subtree_end[i]);
+    }
+    if (model.nv > max_matrix_nv) return;
+    const std::size_t columns =
+        static_cast<std::size_t>(model.nbodies) * static_cast<std::size_t>(model.nv);
+    pA_columns.resize(columns);
+    a_columns.resize(columns);
+    u_columns.resize(columns);
+    dtau_dq.resize(static_cast<std::size_t>(model.nv) * static_cast<std::size_t>(model.nv));
+    dtau_dv.resize(dtau_dq.size());
+    has_matrix_buffers = true;
+  }
+
+  /// Above this many degrees of freedom the workspace has no matrix buffers (they grow with
+  /// nbodies * nv), and minv and aba_derivatives, which need them, cannot run: a workspace of
+  /// a 1,000-link chain holds about 100 MB of them.
+  static constexpr int max_matrix_nv = 1000;
+  bool has_matrix_buffers = false;
 
   std::vector<Xform<S>> Xup;              // [nbodies] parent to body transform
   std::vector<Xform<S>> X0;               // [nbodies] base to body (forward_kinematics)
@@ -29,6 +55,22 @@ struct Workspace {
   std::vector<S> Dinv;                    // [nbodies] 1 / D (ABA)
   std::vector<S> u;                       // [nbodies] tau - S^T pA (ABA)
   std::vector<S> zero;                    // [nv] zeros: the v and a of gravity() and nle()
+  // rnea_derivatives, in base coordinates: body velocity and acceleration, composite inertia,
+  // its variation and composite force of the subtree; per joint column, S, and the derivative
+  // terms dv, alpha, beta of that column
+  std::vector<Motion<S>> ov, oa;              // [nbodies]
+  std::vector<RigidInertia<S>> oIc;           // [nbodies]
+  std::vector<InertiaVariation<S>> oBc;       // [nbodies]
+  std::vector<Force<S>> oF;                   // [nbodies]
+  std::vector<Motion<S>> s, dv, alpha, beta;  // [nv]
+  // minv: per body and column of M^-1 (body * nv + column), pA, a and u of the unit torque
+  std::vector<int> subtree_end;          // [nbodies]
+  std::vector<Force<S>> pA_columns;      // [nbodies * nv] if nv <= max_matrix_nv
+  std::vector<Motion<S>> a_columns;      // [nbodies * nv] if nv <= max_matrix_nv
+  std::vector<S> u_columns;              // [nbodies * nv] if nv <= max_matrix_nv
+  // aba_derivatives: ABA's qdd and the derivatives of RNEA there
+  std::vector<S> qdd;                    // [nv]
+  std::vector<S> dtau_dq, dtau_dv;       // [nv * nv] if nv <= max_matrix_nv
 };
 
 }  // namespace dyngen
