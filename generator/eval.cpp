@@ -11,8 +11,11 @@
 #include <nlohmann/json.hpp>
 
 #include "dyngen/aba.hpp"
+#include "dyngen/aba_derivatives.hpp"
 #include "dyngen/crba.hpp"
+#include "dyngen/minv.hpp"
 #include "dyngen/rnea.hpp"
+#include "dyngen/rnea_derivatives.hpp"
 #include "robot.hpp"
 
 namespace dyngen::gen {
@@ -139,39 +142,70 @@ std::vector<EvalState> read_states(const Model<double>& model, const std::string
 }
 
 void write_results(const Model<double>& model, const std::vector<EvalState>& states,
-                   std::FILE* out) {
+                   std::FILE* out, bool derivatives) {
   const std::size_t n = static_cast<std::size_t>(model.nv);
+  if (derivatives) {
+    if (model.nv > Workspace<double>::max_matrix_nv)
+      throw InputError(fmt::format("--derivatives: the robot has {} degrees of freedom, above the "
+                                   "runtime's {} for M^-1 and the derivatives of ABA",
+                                   model.nv, Workspace<double>::max_matrix_nv));
+    // M^-1 comes with every state
+    if (const std::string reason = aba_undefined_reason(model); !reason.empty())
+      throw InputError(reason + ", or leave out --derivatives (its \"Minv\" needs ABA's pivots)");
+  }
   Workspace<double> ws(model);
-  std::vector<double> tau, qdd, M;
+  std::vector<double> tau, qdd, M, Minv, dtau_dq, dtau_dv, dqdd_dq, dqdd_dv;
   std::string head =
       nlohmann::json{{"joints", velocity_names(model)}, {"nq", model.nq}, {"nv", model.nv}}.dump(2);
   head.resize(head.size() - 2);  // "\n}": the results follow
   put(out, head + ",\n  \"results\": [");
+  // a matrix as a list of rows, 6 spaces deep like "M"
+  const auto matrix = [&](const char* key, const std::vector<double>& A, std::size_t s,
+                          bool first) {
+    for (std::size_t k = 0; k < A.size(); ++k)
+      if (!std::isfinite(A[k]))
+        throw InputError(fmt::format(
+            "state {}: \"{}\"[{}][{}] is not finite ({}): the inputs overflow", s, key, k / n,
+            k % n, A[k]));
+    std::string text = fmt::format("{}\n      \"{}\": [", first ? "" : ",", key);
+    for (std::size_t i = 0; i < n; ++i)
+      text += fmt::format("{}\n        {}", i == 0 ? "" : ",",
+                          array_text(std::vector<double>(&A[i * n], &A[i * n] + n), 8));
+    return text + "\n      ]";
+  };
   for (std::size_t s = 0; s < states.size(); ++s) {
     const EvalState& state = states[s];
-    tau.assign(state.a.empty() ? 0 : n, 0.0);
-    qdd.assign(state.tau.empty() ? 0 : n, 0.0);
+    const bool with_a = !state.a.empty(), with_tau = !state.tau.empty();
+    tau.assign(with_a ? n : 0, 0.0);
+    qdd.assign(with_tau ? n : 0, 0.0);
     M.resize(n * n);
-    if (!state.a.empty()) rnea<double>(model, ws, state.q, state.v, state.a, tau);
-    if (!state.tau.empty()) aba<double>(model, ws, state.q, state.v, state.tau, qdd);
+    if (with_a) rnea<double>(model, ws, state.q, state.v, state.a, tau);
+    if (with_tau) aba<double>(model, ws, state.q, state.v, state.tau, qdd);
     crba<double>(model, ws, state.q, M);
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < n; ++j)
-        if (!std::isfinite(M[i * n + j]))
-          throw InputError(fmt::format(
-              "state {}: \"M\"[{}][{}] is not finite ({}): the inputs overflow", s, i, j,
-              M[i * n + j]));
+    if (derivatives) {
+      Minv.resize(n * n);
+      dtau_dq.assign(with_a ? n * n : 0, 0.0);
+      dtau_dv.assign(with_a ? n * n : 0, 0.0);
+      dqdd_dq.assign(with_tau ? n * n : 0, 0.0);
+      dqdd_dv.assign(with_tau ? n * n : 0, 0.0);
+      if (with_a) rnea_derivatives<double>(model, ws, state.q, state.v, state.a, dtau_dq, dtau_dv);
+      if (with_tau)
+        aba_derivatives<double>(model, ws, state.q, state.v, state.tau, dqdd_dq, dqdd_dv, Minv);
+      else
+        minv<double>(model, ws, state.q, Minv);
+    }
     check_finite(qdd, s, "qdd");
     check_finite(tau, s, "tau");
-    // the keys in nlohmann::json's order: M, qdd, tau
-    put(out, fmt::format("{}\n    {{\n      \"M\": [", s == 0 ? "" : ","));
-    for (std::size_t i = 0; i < n; ++i)
-      put(out, fmt::format("{}\n        {}", i == 0 ? "" : ",",
-                           array_text(std::vector<double>(&M[i * n], &M[i * n] + n), 8)));
-    put(out, "\n      ]");
-    if (!qdd.empty()) put(out, ",\n      \"qdd\": " + array_text(qdd, 6));
-    if (!tau.empty()) put(out, ",\n      \"tau\": " + array_text(tau, 6));
-    put(out, "\n    }");
+    // the keys in nlohmann::json's order: M, Minv, dqdd_dq, dqdd_dv, dtau_dq, dtau_dv, qdd, tau
+    std::string text = fmt::format("{}\n    {{", s == 0 ? "" : ",") + matrix("M", M, s, true);
+    if (derivatives) text += matrix("Minv", Minv, s, false);
+    if (derivatives && with_tau)
+      text += matrix("dqdd_dq", dqdd_dq, s, false) + matrix("dqdd_dv", dqdd_dv, s, false);
+    if (derivatives && with_a)
+      text += matrix("dtau_dq", dtau_dq, s, false) + matrix("dtau_dv", dtau_dv, s, false);
+    if (with_tau) text += ",\n      \"qdd\": " + array_text(qdd, 6);
+    if (with_a) text += ",\n      \"tau\": " + array_text(tau, 6);
+    put(out, text + "\n    }");
   }
   put(out, states.empty() ? "]\n}\n" : "\n  ]\n}\n");
   if (std::fflush(out) != 0 || std::ferror(out))

@@ -30,10 +30,13 @@ std::vector<EvalState> read_states(const Model<double>& model, const std::string
 
 /// Writes {"joints": names of the v entries, "nq", "nv", "results": [{"M" (CRBA, rows), "qdd"
 /// (ABA, when tau is given), "tau" (RNEA, when a is given)}]} to `out`, as nlohmann::json's
-/// dump(2) would, one result at a time as it is computed. Throws InputError naming the state and
-/// the output that is not finite (before writing that state's results), and FileError when
-/// `out` (standard output) cannot be written.
+/// dump(2) would, one result at a time as it is computed. With derivatives, each result also
+/// has "Minv" and, when tau is given, "dqdd_dq" and "dqdd_dv" (aba_derivatives), when a is
+/// given, "dtau_dq" and "dtau_dv" (rnea_derivatives), each a list of rows. Throws InputError
+/// naming the state and the output that is not finite (before writing that state's results), or
+/// for derivatives of a robot without ABA's pivots or above Workspace::max_matrix_nv, and
+/// FileError when `out` (standard output) cannot be written.
 void write_results(const Model<double>& model, const std::vector<EvalState>& states,
-                   std::FILE* out);
+                   std::FILE* out, bool derivatives = false);
 
 }  // namespace dyngen::gen

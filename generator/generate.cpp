@@ -17,6 +17,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// The requested algorithms that divide by ABA's pivots, "aba, minv", or "".
+std::string pivot_algorithms(const std::vector<Algorithm>& algorithms) {
+  std::string names;
+  for (const Algorithm& a : algorithms)
+    if (algorithm_spec(a).divides_by_pivots) names += (names.empty() ? "" : ", ") + a;
+  return names;
+}
+
 /// The steps CRBA takes carrying columns of M to the base: each joint's nv times its depth.
 long long crba_column_steps(const Model<double>& model) {
   std::vector<long long> depth(model.nbodies, 0);
@@ -193,8 +201,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   const std::string scalar = std::is_same_v<T, float> ? "float" : "double";
 
   Generated result;
-  const bool with_aba = std::find(options.algorithms.begin(), options.algorithms.end(),
-                                  "aba") != options.algorithms.end();
+  const bool with_aba = !pivot_algorithms(options.algorithms).empty();
   const auto step = [&](const std::string& text) {
     if (options.progress) options.progress(text);
   };
@@ -353,18 +360,21 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
 }
 
 Generated generate(const Robot& robot, const GenerateOptions& options) {
-  const auto requested = [&](const char* a) {
-    return std::find(options.algorithms.begin(), options.algorithms.end(), a) !=
-           options.algorithms.end();
-  };
-  if (requested("crba")) {
+  for (const Algorithm& a : options.algorithms) {
+    const AlgorithmSpec<double>& spec = algorithm_spec(a);
     const long long steps = crba_column_steps(robot.model);
-    if (steps > max_crba_column_steps)
+    if (spec.growth == Growth::ColumnSteps && steps > max_crba_column_steps)
       throw InputError(fmt::format(
-          "{}: CRBA for this robot would carry columns of M {} steps up the tree (nv times "
-          "depth), above dyngen's limit of {}: its code would take minutes and gigabytes to "
-          "generate and be too large to compile. Leave CRBA out (--algorithms rnea,aba).",
-          robot.path, steps, max_crba_column_steps));
+          "{}: {} for this robot would carry columns {} steps up the tree (nv times depth), "
+          "above dyngen's limit of {}: its code would take minutes and gigabytes to generate "
+          "and be too large to compile. Leave it out (--algorithms).",
+          robot.path, a, steps, max_crba_column_steps));
+    if (spec.growth == Growth::Dense && robot.model.nv > max_dense_nv)
+      throw InputError(fmt::format(
+          "{}: {} for {} degrees of freedom: its code grows with nv^2 times the depth and is "
+          "generated for at most {} (a 100-link chain's aba_derivatives is 5 million "
+          "operations). Leave it out (--algorithms), or call the runtime's dyngen::{}.",
+          robot.path, a, robot.model.nv, max_dense_nv, a));
   }
   if (options.single_precision) {
     try {
@@ -375,26 +385,25 @@ Generated generate(const Robot& robot, const GenerateOptions& options) {
                                    robot.path, e.what()));
     }
   }
-  if (requested("aba") && options.progress)
-    options.progress("checking that ABA is defined");
-  for (const Algorithm& a : options.algorithms)
-    if (a == "aba") {
-      const std::vector<int> joints = joints_blocking_aba(robot.model);
-      if (joints.empty()) {
-        const std::vector<int> in_float = joints_blocking_aba_in_float(robot.model);
-        if (options.single_precision && !in_float.empty())
-          throw InputError(fmt::format(
-              "{}: ABA is undefined for this robot in float: once the model's constants are "
-              "rounded to float (some lie below float's range), these joints move no inertia and "
-              "ABA would divide by zero: {}. Generate double (--scalar double), or leave ABA out "
-              "(--algorithms rnea,crba).",
-              robot.path, joint_list(robot.model, in_float)));
-        break;
-      }
+  if (const std::string which = pivot_algorithms(options.algorithms); !which.empty()) {
+    if (options.progress) options.progress("checking that ABA's pivots are defined");
+    std::string rest;
+    for (const Algorithm& a : options.algorithms)
+      if (!algorithm_spec(a).divides_by_pivots) rest += (rest.empty() ? "" : ",") + a;
+    const std::string without = "--algorithms " + (rest.empty() ? std::string("rnea,crba") : rest);
+    if (!joints_blocking_aba(robot.model).empty())
       throw InputError(fmt::format(
-          "{}: {}, or leave ABA out (--algorithms rnea,crba); RNEA and CRBA are well defined.",
-          robot.path, aba_undefined_reason(robot.model)));
-    }
+          "{}: {}, or leave {} out ({}); RNEA and CRBA are well defined.", robot.path,
+          aba_undefined_reason(robot.model), which, without));
+    const std::vector<int> in_float = joints_blocking_aba_in_float(robot.model);
+    if (options.single_precision && !in_float.empty())
+      throw InputError(fmt::format(
+          "{}: ABA is undefined for this robot in float: once the model's constants are "
+          "rounded to float (some lie below float's range), these joints move no inertia and "
+          "ABA would divide by zero: {}. Generate double (--scalar double), or leave {} out "
+          "({}).",
+          robot.path, joint_list(robot.model, in_float), which, without));
+  }
   return options.single_precision ? generate_as<float>(robot, options)
                                   : generate_as<double>(robot, options);
 }

@@ -31,6 +31,11 @@ struct GenerateOptions {
 /// such steps, a chain of 500 links, which takes about 20 s, 1 GB and writes 75 MB of code.
 inline constexpr long long max_crba_column_steps = 125000;
 
+/// minv and aba_derivatives fill every entry of an nv x nv matrix with work that grows with the
+/// depth: generation refuses them above this many degrees of freedom (a 64-link chain's
+/// aba_derivatives is about 1.5 million operations).
+inline constexpr int max_dense_nv = 64;
+
 struct FunctionCounts {
   Algorithm algorithm;
   OpCounts generated;  // in the emitted function

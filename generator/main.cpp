@@ -209,12 +209,16 @@ int eval_main(int argc, char** argv) {
                  "JSON array of states {\"q\": [...], \"v\": [...], \"a\": [...]} or with "
                  "\"tau\" instead of \"a\"; - reads standard input")
       ->required();
+  bool derivatives = false;
+  app.add_flag("--derivatives", derivatives,
+               "add Minv, and the derivatives of ABA (dqdd_dq, dqdd_dv) where tau is given and of "
+               "RNEA (dtau_dq, dtau_dv) where a is given");
   flags.add_to(app);
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen eval", [&] {
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
-    write_results(robot.model, read_states(robot.model, states), stdout);
+    write_results(robot.model, read_states(robot.model, states), stdout, derivatives);
   });
 }
 

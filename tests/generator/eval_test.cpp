@@ -34,7 +34,8 @@ using dyngen::test::floating_base;
 const std::string models = DYNGEN_TEST_MODELS;
 
 /// What dyngen eval writes for the states, as text: read_states and write_results in memory.
-std::string eval_text(const dyngen::Model<double>& model, const json& states) {
+std::string eval_text(const dyngen::Model<double>& model, const json& states,
+                      bool derivatives = false) {
   std::istringstream in(states.dump());
   const std::vector<EvalState> read = read_states(model, in, "<test>");
   char* buffer = nullptr;
@@ -42,7 +43,7 @@ std::string eval_text(const dyngen::Model<double>& model, const json& states) {
   std::FILE* out = open_memstream(&buffer, &size);
   std::string error;
   try {
-    write_results(model, read, out);
+    write_results(model, read, out, derivatives);
   } catch (const InputError& e) {
     error = e.what();
   }
@@ -214,6 +215,54 @@ TEST(Eval, WritesTheResultsAsTheirJsonTreeWouldBePrinted) {
                       {"nv", 6},
                       {"results", json::array()}};
   EXPECT_EQ(eval_text(model, json::array()), empty.dump(2) + "\n");
+}
+
+// --derivatives against central differences of eval's own tau and qdd (what a user can do in a
+// minute), and printed as dump(2) prints its tree
+TEST(Eval, DerivativesAgreeWithCentralDifferences) {
+  const dyngen::Model<double> model = load_robot(models + "/ur5.urdf").model;
+  json s = state(model, 0, "a");
+  s["tau"] = state(model, 1, "tau")["tau"];
+  const std::string text = eval_text(model, json::array({s}), true);
+  EXPECT_EQ(json::parse(text).dump(2) + "\n", text);
+  const json r = json::parse(text)["results"][0];
+  const double h = 1e-6;
+  double worst = 0;
+  for (int j = 0; j < 6; ++j) {
+    for (const char* x : {"q", "v"}) {
+      json plus = s, minus = s;
+      plus[x][j] = s[x][j].get<double>() + h;
+      minus[x][j] = s[x][j].get<double>() - h;
+      const json rp = evaluate(model, json::array({plus}))["results"][0];
+      const json rm = evaluate(model, json::array({minus}))["results"][0];
+      for (const auto& [output, derivative] :
+           {std::pair{"tau", std::string("dtau_d") + x}, std::pair{"qdd", std::string("dqdd_d") + x}}) {
+        const Eigen::VectorXd fd = (vec(rp[output]) - vec(rm[output])) / (2 * h);
+        for (int i = 0; i < 6; ++i)
+          worst = std::max(worst, std::abs(r[derivative][i][j].get<double>() - fd[i]) /
+                                      (1 + std::abs(fd[i])));
+      }
+    }
+  }
+  EXPECT_LT(worst, 1e-6);  // central differences at h = 1e-6: about 1e-9 truncation and rounding
+  Eigen::MatrixXd M(6, 6), Minv(6, 6);
+  for (int i = 0; i < 6; ++i) M.row(i) = vec(r["M"][i]), Minv.row(i) = vec(r["Minv"][i]);
+  EXPECT_LT((Minv * M - Eigen::MatrixXd::Identity(6, 6)).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(Eval, DerivativesNeedAbasPivots) {
+  // M^-1 comes with every state, so even a state without tau is refused
+  const dyngen::Model<double> model =
+      load_robot(models + "/romeo.urdf", independent_mimics()).model;
+  const json s = {{"q", std::vector<double>(model.nq, 0.0)}};
+  EXPECT_NO_THROW(eval_text(model, json::array({s})));
+  try {
+    eval_text(model, json::array({s}), true);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("ABA is undefined"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--derivatives"), std::string::npos) << e.what();
+  }
 }
 
 using EvalCommand = dyngen::test::ScratchTest;

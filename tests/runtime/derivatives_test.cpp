@@ -163,6 +163,34 @@ TEST_P(Derivatives, RneaDerivativesMatchForwardModeDifferentiation) {
   report("rnea_derivatives vs dual numbers, error / (nv eps max|entry|)", worst);
 }
 
+TEST_P(Derivatives, TangentColumnsAreThoseOfIntegrate) {
+  // central differences of rnea along integrate(q, +-h e_c), the q (+) d the README documents
+  const Model<double> model = GetParam().make();
+  const int n = model.nv;
+  Workspace<double> ws(model);
+  test::Random rng(9);
+  const test::State s = test::random_state(model, rng);
+  std::vector<double> dq(n * n), dv(n * n), d(n), qp(model.nq), qm(model.nq), tp(n), tm(n);
+  rnea_derivatives<double>(model, ws, s.q, s.qd, s.qdd, dq, dv);
+  const double h = 1e-6;
+  double worst = 0;
+  for (int c = 0; c < n; ++c) {
+    std::fill(d.begin(), d.end(), 0.0);
+    d[c] = h;
+    integrate<double>(model, s.q, d, qp);
+    d[c] = -h;
+    integrate<double>(model, s.q, d, qm);
+    rnea<double>(model, ws, qp, s.qd, s.qdd, tp);
+    rnea<double>(model, ws, qm, s.qd, s.qdd, tm);
+    for (int r = 0; r < n; ++r)
+      worst = std::max(worst, std::abs((tp[r] - tm[r]) / (2 * h) - dq[r * n + c]));
+  }
+  const double scale = std::max(max_abs(dq), 1.0);
+  report("rnea_derivatives vs central differences along integrate, error / max|entry|",
+         worst / scale);
+  EXPECT_LE(worst / scale, 1e-6);  // truncation h^2 and rounding eps / h: about 1e-9
+}
+
 TEST_P(Derivatives, AbaDerivativesMatchForwardModeDifferentiation) {
   // forward mode through aba itself along q (tangent), v and tau
   const Model<double> model = GetParam().make();

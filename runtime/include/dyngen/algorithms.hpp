@@ -61,6 +61,11 @@ using AlgorithmInputs = std::span<const std::span<const S>>;
 template <class S>
 using AlgorithmOutputs = std::span<const std::span<S>>;
 
+/// How an algorithm's work grows with the robot: linearly in the bodies; with the sum over
+/// joints of nv times depth (carrying columns up the tree); or with nv^2 times the depth
+/// (filling a dense nv x nv matrix).
+enum class Growth { Linear, ColumnSteps, Dense };
+
 /// One algorithm: call(model, ws, inputs, outputs) with the arrays in the order listed, each of
 /// its extent's length. Every algorithm reads q first.
 template <class S>
@@ -68,6 +73,8 @@ struct AlgorithmSpec {
   std::string_view name;     // of the runtime function and the generated one
   std::string_view summary;  // one sentence for the generated header
   std::vector<ArraySpec> inputs, outputs;
+  Growth growth;
+  bool divides_by_pivots;    // ABA's precondition: every joint moves some inertia
   void (*call)(const Model<S>&, Workspace<S>&, AlgorithmInputs<S>, AlgorithmOutputs<S>);
 };
 
@@ -78,30 +85,37 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
   static const std::vector<AlgorithmSpec<S>> table{
       {"rnea", "Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q).",
        {q_array, v_array, a_array}, {tau_array},
+       Growth::Linear, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          rnea<S>(m, ws, in[0], in[1], in[2], out[0]);
        }},
       {"crba", "Mass matrix M(q) (composite rigid bodies).", {q_array}, {M_array},
+       Growth::ColumnSteps, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) { crba<S>(m, ws, in[0], out[0]); }},
       {"aba",
        "Forward dynamics (articulated bodies): qdd = M(q)^-1 (tau - C(q, v) v - g(q)).",
        {q_array, v_array, tau_array}, {qdd_array},
+       Growth::Linear, true,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          aba<S>(m, ws, in[0], in[1], in[2], out[0]);
        }},
       {"gravity", "Generalised gravity g(q): rnea at v = 0 and a = 0.", {q_array}, {g_array},
+       Growth::Linear, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) { gravity<S>(m, ws, in[0], out[0]); }},
       {"nle", "Nonlinear effects h(q, v) = C(q, v) v + g(q): rnea at a = 0.", {q_array, v_array},
        {h_array},
+       Growth::Linear, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          nle<S>(m, ws, in[0], in[1], out[0]);
        }},
       {"minv", "Inverse of the mass matrix M(q)^-1 (articulated-body recursion, no factorisation).",
        {q_array}, {Minv_array},
+       Growth::Dense, true,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) { minv<S>(m, ws, in[0], out[0]); }},
       {"rnea_derivatives",
        "Derivatives of inverse dynamics: d tau / dq and d tau / dv at (q, v, a) (d tau / da is M).",
        {q_array, v_array, a_array}, {dtau_dq_array, dtau_dv_array},
+       Growth::ColumnSteps, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          rnea_derivatives<S>(m, ws, in[0], in[1], in[2], out[0], out[1]);
        }},
@@ -109,6 +123,7 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        "Derivatives of forward dynamics: d qdd / dq, d qdd / dv and d qdd / d tau = M^-1 at "
        "(q, v, tau).",
        {q_array, v_array, tau_array}, {dqdd_dq_array, dqdd_dv_array, Minv_array},
+       Growth::Dense, true,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          aba_derivatives<S>(m, ws, in[0], in[1], in[2], out[0], out[1], out[2]);
        }},
