@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake --build build --target dyngen -j "$(nproc)" >/dev/null
-build/dyngen examples/ur5.urdf -o generated/ur5 --quiet --algorithms rnea,crba,aba,gravity,nle 2>/dev/null
+build/dyngen examples/ur5.urdf -o generated/ur5 --quiet --algorithms all 2>/dev/null
 build/dyngen tests/models/planar5.yaml -o generated/planar5 --quiet

@@ -1,4 +1,4 @@
-// Once a Workspace exists, rnea, crba and aba allocate nothing (Pinocchio's
+// Once a Workspace exists, no algorithm of the table allocates (Pinocchio's
 // set_is_malloc_allowed check), in double and in float.
 #include <gtest/gtest.h>
 
@@ -38,17 +38,21 @@ void expect_no_allocation(const Model<double>& model_double, const std::string& 
   Workspace<S> ws(model);
   test::Random rng(61);
   const test::State s = test::random_state(model_double, rng);
-  const std::vector<S> q = test::cast_vector<S>(s.q), qd = test::cast_vector<S>(s.qd),
-                       qdd = test::cast_vector<S>(s.qdd), tau = test::cast_vector<S>(s.tau);
-  std::vector<S> out(model.nv), M(model.nv * model.nv);
-
-  test::AllocationCounter c;
-  rnea<S>(model, ws, q, qd, qdd, out);
-  EXPECT_EQ(c.count(), 0u) << name << ": rnea";
-  crba<S>(model, ws, q, M);
-  EXPECT_EQ(c.count(), 0u) << name << ": crba";
-  aba<S>(model, ws, q, qd, tau, out);
-  EXPECT_EQ(c.count(), 0u) << name << ": aba";
+  // every algorithm of the table, with its arrays made before counting
+  for (const AlgorithmSpec<S>& a : algorithm_table<S>()) {
+    std::vector<std::vector<S>> x, y;
+    for (const ArraySpec& in : a.inputs)
+      x.push_back(test::cast_vector<S>(in.name == "q" ? s.q
+                                       : in.name == "v" ? s.qd
+                                       : in.name == "a" ? s.qdd
+                                                        : s.tau));
+    for (const ArraySpec& out : a.outputs) y.emplace_back(extent_size(out.extent, model.nq, model.nv));
+    const std::vector<std::span<const S>> in(x.begin(), x.end());
+    const std::vector<std::span<S>> out(y.begin(), y.end());
+    test::AllocationCounter c;
+    a.call(model, ws, in, out);
+    EXPECT_EQ(c.count(), 0u) << name << ": " << a.name;
+  }
 }
 
 TEST(NoAllocation, Ur5) {
@@ -61,6 +65,13 @@ TEST(NoAllocation, TwelveLinkChain) {
   const Model<double> model = test::make_random_chain(12, 62, false);
   expect_no_allocation<double>(model, "12-link chain double");
   expect_no_allocation<float>(model, "12-link chain float");
+}
+
+TEST(NoAllocation, FloatingQuadruped) {
+  gen::LoadOptions options;
+  options.floating_base = true;
+  const Model<double> model = gen::load_robot(test::model_path("solo12.urdf"), options).model;
+  expect_no_allocation<double>(model, "solo12 floating double");
 }
 
 }  // namespace

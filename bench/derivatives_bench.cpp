@@ -1,0 +1,162 @@
+// dyngen_derivatives_bench (bench/README.md): the generated derivatives beside the generated
+// values they differentiate, finite differences of the generated ABA, the runtime's derivatives,
+// and minv beside CRBA followed by an LDL^T inverse, for the packages of bench/CMakeLists.txt's
+// derivative_package(). ns per call on seeded random states that change every call; each
+// generated function is first checked against the runtime.
+//
+// usage: dyngen_derivatives_bench [Google Benchmark flags]
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "derivative_packages.hpp"
+#include "dyngen/dyngen.hpp"
+#include "dyngen/numerics/random.hpp"
+#include "robot.hpp"
+
+namespace dyngen::bench {
+namespace {
+
+constexpr int state_count = 64;  // cycled through, so the inputs change every call
+
+struct Fixture {
+  const DerivativePackage* p;
+  Model<double> model;
+  std::vector<numerics::State> states;
+  Workspace<double> ws;
+  std::vector<double> a, b, c;  // outputs, nv * nv each
+  int n;
+
+  explicit Fixture(const DerivativePackage& package)
+      : p(&package), model(gen::load_robot(package.input, options(package)).model), ws(model) {
+    n = model.nv;
+    numerics::Random rng(20261125);
+    for (int k = 0; k < state_count; ++k) states.push_back(numerics::random_state(model, rng));
+    a.resize(n * n), b.resize(n * n), c.resize(n * n);
+  }
+
+  static gen::LoadOptions options(const DerivativePackage& p) {
+    gen::LoadOptions o;
+    o.floating_base = p.floating_base;
+    o.mimic_independent = true;
+    return o;
+  }
+};
+
+double max_difference(const std::vector<double>& x, const std::vector<double>& y) {
+  double m = 0, scale = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    m = std::max(m, std::abs(x[k] - y[k]));
+    scale = std::max(scale, std::abs(y[k]));
+  }
+  return m / std::max(scale, 1.0);
+}
+
+/// The generated derivatives against the runtime's at one state, so that every timed function
+/// computes what it says.
+void check(Fixture& f) {
+  const numerics::State& s = f.states[0];
+  Workspace<double> ws(f.model);
+  const std::size_t nn = static_cast<std::size_t>(f.n) * f.n;
+  std::vector<double> x(nn), y(nn), z(nn), X(nn), Y(nn), Z(nn);
+  f.p->rnea_derivatives(s.q.data(), s.qd.data(), s.qdd.data(), x.data(), y.data());
+  rnea_derivatives<double>(f.model, ws, s.q, s.qd, s.qdd, X, Y);
+  f.p->aba_derivatives(s.q.data(), s.qd.data(), s.tau.data(), x.data(), y.data(), z.data());
+  aba_derivatives<double>(f.model, ws, s.q, s.qd, s.tau, X, Y, Z);
+  if (max_difference(x, X) > 1e-9 || max_difference(y, Y) > 1e-9 || max_difference(z, Z) > 1e-9)
+    throw std::runtime_error(std::string(f.p->name) + ": generated derivatives differ");
+}
+
+/// Forward differences of the generated ABA in q (along integrate) and v: 2n + 1 calls.
+void finite_differences(Fixture& f, const numerics::State& s) {
+  const int n = f.n;
+  std::vector<double> qdd0(n), qdd(n), q(s.q.size()), v = s.qd, d(n, 0.0);
+  const double h = 1e-7;
+  f.p->aba(s.q.data(), s.qd.data(), s.tau.data(), qdd0.data());
+  for (int j = 0; j < n; ++j) {
+    d[j] = h;
+    integrate<double>(f.model, s.q, d, q);
+    d[j] = 0;
+    f.p->aba(q.data(), s.qd.data(), s.tau.data(), qdd.data());
+    for (int i = 0; i < n; ++i) f.a[i * n + j] = (qdd[i] - qdd0[i]) / h;
+    v[j] += h;
+    f.p->aba(s.q.data(), v.data(), s.tau.data(), qdd.data());
+    v[j] = s.qd[j];
+    for (int i = 0; i < n; ++i) f.b[i * n + j] = (qdd[i] - qdd0[i]) / h;
+  }
+}
+
+/// CRBA, then M^-1 from an LDL^T factorisation (Eigen's, dense).
+void crba_ldlt_inverse(Fixture& f, const numerics::State& s) {
+  f.p->crba(s.q.data(), f.a.data());
+  const Eigen::Map<const Eigen::MatrixXd> M(f.a.data(), f.n, f.n);
+  Eigen::Map<Eigen::MatrixXd>(f.b.data(), f.n, f.n) =
+      M.ldlt().solve(Eigen::MatrixXd::Identity(f.n, f.n));
+}
+
+using Measure = void (*)(Fixture&, const numerics::State&);
+
+const std::map<std::string, Measure>& measures() {
+  static const std::map<std::string, Measure> all{
+      {"rnea", [](Fixture& f, const numerics::State& s) {
+         f.p->rnea(s.q.data(), s.qd.data(), s.qdd.data(), f.a.data());
+       }},
+      {"aba", [](Fixture& f, const numerics::State& s) {
+         f.p->aba(s.q.data(), s.qd.data(), s.tau.data(), f.a.data());
+       }},
+      {"crba", [](Fixture& f, const numerics::State& s) { f.p->crba(s.q.data(), f.a.data()); }},
+      {"minv", [](Fixture& f, const numerics::State& s) { f.p->minv(s.q.data(), f.a.data()); }},
+      {"crba_ldlt_inverse", crba_ldlt_inverse},
+      {"rnea_derivatives", [](Fixture& f, const numerics::State& s) {
+         f.p->rnea_derivatives(s.q.data(), s.qd.data(), s.qdd.data(), f.a.data(), f.b.data());
+       }},
+      {"aba_derivatives", [](Fixture& f, const numerics::State& s) {
+         f.p->aba_derivatives(s.q.data(), s.qd.data(), s.tau.data(), f.a.data(), f.b.data(),
+                              f.c.data());
+       }},
+      {"aba_finite_differences", finite_differences},
+      {"runtime_rnea_derivatives", [](Fixture& f, const numerics::State& s) {
+         rnea_derivatives<double>(f.model, f.ws, s.q, s.qd, s.qdd, f.a, f.b);
+       }},
+      {"runtime_aba_derivatives", [](Fixture& f, const numerics::State& s) {
+         aba_derivatives<double>(f.model, f.ws, s.q, s.qd, s.tau, f.a, f.b, f.c);
+       }},
+  };
+  return all;
+}
+
+}  // namespace
+}  // namespace dyngen::bench
+
+int main(int argc, char** argv) {
+  using namespace dyngen::bench;
+  benchmark::Initialize(&argc, argv);
+  std::vector<std::unique_ptr<Fixture>> fixtures;
+  for (const DerivativePackage& p : derivative_packages()) {
+    fixtures.push_back(std::make_unique<Fixture>(p));
+    check(*fixtures.back());
+    Fixture* f = fixtures.back().get();
+    for (const auto& [name, measure] : measures()) {
+      const std::string id = std::string(p.name) + "/" + name;
+      benchmark::RegisterBenchmark(id.c_str(), [f, m = measure, id](benchmark::State& st) {
+        std::size_t k = 0;
+        for (auto _ : st) {
+          m(*f, f->states[k]);
+          benchmark::DoNotOptimize(f->a.data());
+          benchmark::ClobberMemory();
+          k = (k + 1) % f->states.size();
+        }
+      });
+    }
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
