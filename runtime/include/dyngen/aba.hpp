@@ -57,15 +57,7 @@ void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
     if (p < 0) continue;
     const Force<S>& U = ws.U[i];
     const Force<S> Ud{scale(U.ang, ws.Dinv[i]), scale(U.lin, ws.Dinv[i])};
-    const ArticulatedInertia<S>& A = ws.IA[i];
-    ArticulatedInertia<S> Ia;
-    Ia.I = {A.I.xx - U.ang.x * Ud.ang.x, A.I.yy - U.ang.y * Ud.ang.y, A.I.zz - U.ang.z * Ud.ang.z,
-            A.I.xy - U.ang.x * Ud.ang.y, A.I.xz - U.ang.x * Ud.ang.z, A.I.yz - U.ang.y * Ud.ang.z};
-    Ia.H = {A.H.xx - U.ang.x * Ud.lin.x, A.H.xy - U.ang.x * Ud.lin.y, A.H.xz - U.ang.x * Ud.lin.z,
-            A.H.yx - U.ang.y * Ud.lin.x, A.H.yy - U.ang.y * Ud.lin.y, A.H.yz - U.ang.y * Ud.lin.z,
-            A.H.zx - U.ang.z * Ud.lin.x, A.H.zy - U.ang.z * Ud.lin.y, A.H.zz - U.ang.z * Ud.lin.z};
-    Ia.M = {A.M.xx - U.lin.x * Ud.lin.x, A.M.yy - U.lin.y * Ud.lin.y, A.M.zz - U.lin.z * Ud.lin.z,
-            A.M.xy - U.lin.x * Ud.lin.y, A.M.xz - U.lin.x * Ud.lin.z, A.M.yz - U.lin.y * Ud.lin.z};
+    const ArticulatedInertia<S> Ia = downdate(ws.IA[i], U, Ud);
     const S& u = ws.u[i];
     const Force<S> pa = ws.pA[i] + mul(Ia, ws.c[i]) +
                         Force<S>{scale(Ud.ang, u), scale(Ud.lin, u)};

@@ -65,15 +65,7 @@ void minv(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
       const Force<S> pa = ws.pA_columns[at(i, c)] + Force<S>{scale(Ud.ang, u), scale(Ud.lin, u)};
       ws.pA_columns[at(p, c)] = ws.pA_columns[at(p, c)] + apply_force_T(ws.Xup[i], pa);
     }
-    const ArticulatedInertia<S>& A = ws.IA[i];
-    ArticulatedInertia<S> Ia;
-    Ia.I = {A.I.xx - U.ang.x * Ud.ang.x, A.I.yy - U.ang.y * Ud.ang.y, A.I.zz - U.ang.z * Ud.ang.z,
-            A.I.xy - U.ang.x * Ud.ang.y, A.I.xz - U.ang.x * Ud.ang.z, A.I.yz - U.ang.y * Ud.ang.z};
-    Ia.H = {A.H.xx - U.ang.x * Ud.lin.x, A.H.xy - U.ang.x * Ud.lin.y, A.H.xz - U.ang.x * Ud.lin.z,
-            A.H.yx - U.ang.y * Ud.lin.x, A.H.yy - U.ang.y * Ud.lin.y, A.H.yz - U.ang.y * Ud.lin.z,
-            A.H.zx - U.ang.z * Ud.lin.x, A.H.zy - U.ang.z * Ud.lin.y, A.H.zz - U.ang.z * Ud.lin.z};
-    Ia.M = {A.M.xx - U.lin.x * Ud.lin.x, A.M.yy - U.lin.y * Ud.lin.y, A.M.zz - U.lin.z * Ud.lin.z,
-            A.M.xy - U.lin.x * Ud.lin.y, A.M.xz - U.lin.x * Ud.lin.z, A.M.yz - U.lin.y * Ud.lin.z};
+    const ArticulatedInertia<S> Ia = downdate(ws.IA[i], U, Ud);
     ws.IA[p] = ws.IA[p] + apply_inertia_T(ws.Xup[i], Ia);
   }
 

@@ -321,6 +321,22 @@ ArticulatedInertia<S> operator+(const ArticulatedInertia<S>& a, const Articulate
 }
 
 
+/// A - U Ud^T, with Ud = U / D: the articulated inertia a joint passes to its parent (RBDA
+/// eq. 7.37 for a one-column joint, Ia = IA - U U^T / D).
+template <class S>
+ArticulatedInertia<S> downdate(const ArticulatedInertia<S>& A, const Force<S>& U,
+                               const Force<S>& Ud) {
+  ArticulatedInertia<S> Ia;
+  Ia.I = {A.I.xx - U.ang.x * Ud.ang.x, A.I.yy - U.ang.y * Ud.ang.y, A.I.zz - U.ang.z * Ud.ang.z,
+          A.I.xy - U.ang.x * Ud.ang.y, A.I.xz - U.ang.x * Ud.ang.z, A.I.yz - U.ang.y * Ud.ang.z};
+  Ia.H = {A.H.xx - U.ang.x * Ud.lin.x, A.H.xy - U.ang.x * Ud.lin.y, A.H.xz - U.ang.x * Ud.lin.z,
+          A.H.yx - U.ang.y * Ud.lin.x, A.H.yy - U.ang.y * Ud.lin.y, A.H.yz - U.ang.y * Ud.lin.z,
+          A.H.zx - U.ang.z * Ud.lin.x, A.H.zy - U.ang.z * Ud.lin.y, A.H.zz - U.ang.z * Ud.lin.z};
+  Ia.M = {A.M.xx - U.lin.x * Ud.lin.x, A.M.yy - U.lin.y * Ud.lin.y, A.M.zz - U.lin.z * Ud.lin.z,
+          A.M.xy - U.lin.x * Ud.lin.y, A.M.xz - U.lin.x * Ud.lin.z, A.M.yz - U.lin.y * Ud.lin.z};
+  return Ia;
+}
+
 template <class S>
 InertiaVariation<S> operator+(const InertiaVariation<S>& a, const InertiaVariation<S>& b) {
   return {a.hdot + b.hdot, a.Idot + b.Idot, a.p + b.p};
