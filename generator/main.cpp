@@ -354,7 +354,7 @@ int main(int argc, char** argv) {
     if (!quiet) {
       fmt::print("operations per call, generated vs runtime (add+sub, mul, div, neg, sin, cos):\n");
       for (const FunctionCounts& c : generated.counts)
-        fmt::print("  {:<8} {:>7} vs {:>7}  ({:.0f}% removed)   generated: {}\n",
+        fmt::print("  {:<16} {:>7} vs {:>7}  ({:.0f}% removed)   generated: {}\n",
                    c.algorithm, c.generated.total(), c.runtime.total(),
                    100.0 * (1.0 - double(c.generated.total()) / double(c.runtime.total())),
                    to_string(c.generated));
