@@ -360,9 +360,9 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
 }
 
 Generated generate(const Robot& robot, const GenerateOptions& options) {
+  const long long steps = crba_column_steps(robot.model);
   for (const Algorithm& a : options.algorithms) {
     const AlgorithmSpec<double>& spec = algorithm_spec(a);
-    const long long steps = crba_column_steps(robot.model);
     if (spec.growth == Growth::ColumnSteps && steps > max_crba_column_steps)
       throw InputError(fmt::format(
           "{}: {} for this robot would carry columns {} steps up the tree (nv times depth), "

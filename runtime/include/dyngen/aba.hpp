@@ -16,7 +16,7 @@ namespace dyngen {
 template <class S>
 void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<const S> qd,
          std::span<const S> tau, std::span<S> qdd) {
-  const Motion<S> a0{{}, {-model.gravity.x, -model.gravity.y, -model.gravity.z}};
+  const Motion<S> a0 = base_acceleration(model);
 
   // velocity pass: v_i = Xup v_p + vJ, c_i = v_i x vJ, IA_i = I_i, pA_i = v_i x* I_i v_i
   for (int i = 0; i < model.nbodies; ++i) {

@@ -23,6 +23,12 @@ void joint_sincos(const S& q, S& s, S& c) {
 inline void joint_sincos(double q, double& s, double& c) { sincos(q, s, c); }
 inline void joint_sincos(float q, float& s, float& c) { sincos(q, s, c); }
 
+/// a_0 = -a_grav: gravity enters the recursions as an upward acceleration of the base
+template <class S>
+Motion<S> base_acceleration(const Model<S>& model) {
+  return {{}, {-model.gravity.x, -model.gravity.y, -model.gravity.z}};
+}
+
 /// Xup = XJ(q) X_tree for body i (RBDA eq. 4.32 with Table 4.1's XJ).
 template <class S>
 Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {

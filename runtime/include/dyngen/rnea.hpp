@@ -14,8 +14,7 @@ namespace dyngen {
 template <class S>
 void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<const S> qd,
           std::span<const S> qdd, std::span<S> tau) {
-  // a_0 = -a_grav: gravity enters as an upward acceleration of the base
-  const Motion<S> a0{{}, {-model.gravity.x, -model.gravity.y, -model.gravity.z}};
+  const Motion<S> a0 = base_acceleration(model);
 
   // forward pass: v_i = Xup v_p + S qd_i, a_i = Xup a_p + S qdd_i + v_i x S qd_i,
   // f_i = I_i a_i + v_i x* I_i v_i

@@ -37,8 +37,7 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
                       std::span<const S> qd, std::span<const S> qdd, std::span<S> dtau_dq,
                       std::span<S> dtau_dv) {
   const std::size_t n = static_cast<std::size_t>(model.nv);
-  // a_0 = -a_grav: gravity enters as an upward acceleration of the base
-  const Motion<S> a0{{}, {-model.gravity.x, -model.gravity.y, -model.gravity.z}};
+  const Motion<S> a0 = base_acceleration(model);
 
   // forward pass, in base coordinates: X0_i, S_i, v_i = v_p + S_i qd_i,
   // a_i = a_p + S_i qdd_i + v_i x S_i qd_i, and each body's inertia Ic_i = X0^T I_i X0,
