@@ -22,30 +22,70 @@ namespace {
 
 template <class T>
 std::vector<bool> live_nodes(const Program<T>& program) {
-  const auto& nodes = program.graph.nodes;
-  std::vector<bool> live(nodes.size(), false);
+  const Graph<T>& g = program.graph;
+  std::vector<bool> live(g.nodes.size(), false);
   for (const int id : program.stored) live[id] = true;
-  for (int id = static_cast<int>(nodes.size()) - 1; id >= 0; --id) {
-    if (!live[id]) continue;
-    if (nodes[id].a >= 0) live[nodes[id].a] = true;
-    if (nodes[id].b >= 0) live[nodes[id].b] = true;
-  }
+  for (int id = static_cast<int>(g.nodes.size()) - 1; id >= 0; --id)
+    if (live[id]) g.for_each_operand(id, [&](int x) { live[x] = true; });
   return live;
 }
 
-void count(OpCounts& c, Op op) {
+void count(OpCounts& c, Op op, long times = 1) {
   switch (op) {
     case Op::Add:
-    case Op::Sub: ++c.add; break;
-    case Op::Mul: ++c.mul; break;
-    case Op::Div: ++c.div; break;
-    case Op::Neg: ++c.neg; break;
-    case Op::Sin: ++c.sin; break;
-    case Op::Cos: ++c.cos; break;
+    case Op::Sub: c.add += times; break;
+    case Op::Mul: c.mul += times; break;
+    case Op::Div: c.div += times; break;
+    case Op::Neg: c.neg += times; break;
+    case Op::Sin: c.sin += times; break;
+    case Op::Cos: c.cos += times; break;
     case Op::Const:
-    case Op::Input: break;
+    case Op::Input:
+    case Op::Call:
+    case Op::Result: break;
   }
 }
+
+/// "    f(a, b, ...);" with the arguments wrapped before 100 columns under the first.
+std::string wrapped_call(const std::string& function, const std::vector<std::string>& arguments) {
+  const std::string head = "    " + function + "(";
+  std::string text = head;
+  std::size_t column = head.size();
+  for (std::size_t k = 0; k < arguments.size(); ++k) {
+    const std::string item = arguments[k] + (k + 1 < arguments.size() ? ", " : ");");
+    if (column + item.size() > 100 && column > head.size()) {
+      while (text.back() == ' ') text.pop_back();
+      text += "\n" + std::string(head.size(), ' ');
+      column = head.size();
+    }
+    text += item;
+    column += item.size();
+  }
+  return text + "\n";
+}
+
+OpCounts count_ops_of(const KernelRecord& call) {
+  OpCounts c;
+  for (std::size_t op = 0; op < op_kinds; ++op) count(c, static_cast<Op>(op), call.ops[op]);
+  return c;
+}
+
+/// "{" then the items on lines of at most 100 columns indented by 8, then "}".
+std::string braced_list(const std::vector<std::string>& items) {
+  std::string text = "{", line;
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    const std::string item = items[k] + (k + 1 < items.size() ? "," : "");
+    if (line.empty() || line.size() + 1 + item.size() > 92) {
+      text += line.empty() ? "" : line;
+      text += "\n        ";
+      line = item;
+    } else {
+      line += " " + item;
+    }
+  }
+  return text + line + "}";
+}
+
 
 template <class T>
 std::string shortest(T value) {
@@ -91,6 +131,7 @@ std::string section_header(const Model<double>& model, int body, Pass pass) {
                      pass_name(pass));
 }
 
+
 }  // namespace
 
 std::string literal(double value) {
@@ -120,8 +161,15 @@ template <class T>
 OpCounts count_ops(const Program<T>& program, bool live_only) {
   const std::vector<bool> live = live_nodes(program);
   OpCounts c;
-  for (std::size_t id = 0; id < program.graph.nodes.size(); ++id)
-    if (live[id] || !live_only) count(c, program.graph.nodes[id].op);
+  for (std::size_t id = 0; id < program.graph.nodes.size(); ++id) {
+    if (!live[id] && live_only) continue;
+    const Node<T>& n = program.graph.nodes[id];
+    count(c, n.op);
+    if (n.op == Op::Call) {
+      const OpCounts k = count_ops_of(program.graph.calls[n.a]);
+      c.add += k.add, c.mul += k.mul, c.div += k.div, c.neg += k.neg, c.sin += k.sin, c.cos += k.cos;
+    }
+  }
   return c;
 }
 
@@ -163,8 +211,8 @@ std::vector<Section> sections_of(const Program<T>& program, const std::vector<bo
     for (const int id : s.ops) {
       const Node<T>& n = nodes[id];
       s.shape += fmt::format("{}", static_cast<int>(n.op));
-      for (const int x : {n.a, n.b}) {
-        if (x < 0) continue;
+      if (n.op == Op::Call) s.shape += fmt::format(" call{}", n.a);  // never shared
+      program.graph.for_each_operand(id, [&](int x) {
         if (nodes[x].op == Op::Const) {
           const auto [it, added] = constant_slot.emplace(x, static_cast<int>(s.constants.size()));
           if (added) s.constants.push_back(x);
@@ -177,7 +225,7 @@ std::vector<Section> sections_of(const Program<T>& program, const std::vector<bo
           if (added) s.inputs.push_back(x);
           s.shape += fmt::format(" x{}", it->second);
         }
-      }
+      });
       s.shape += ";";
     }
   }
@@ -215,7 +263,45 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   std::vector<bool> is_op(nodes.size(), false);
   for (std::size_t id = 0; id < nodes.size(); ++id)
     is_op[id] = live[id] && nodes[id].op != Op::Const && nodes[id].op != Op::Input &&
-                !is_trig(nodes[id]);
+                nodes[id].op != Op::Result && !is_trig(nodes[id]);
+
+  // Kernel calls: each array a call writes is named once, and an array of the function's
+  // outputs that is exactly one of them is passed to the kernel to write in place
+  const std::vector<KernelRecord>& calls = program.graph.calls;
+  std::vector<std::vector<std::string>> call_arrays(calls.size());
+  std::vector<std::vector<bool>> call_in_place(calls.size());
+  std::vector<bool> output_in_place(program.outputs.size(), false);
+  for (std::size_t c = 0; c < calls.size(); ++c) {
+    const KernelRecord& call = calls[c];
+    int first = call.first_result;
+    for (std::size_t j = 0; j < call.outputs.size(); ++j) {
+      std::string array = fmt::format("{}_{}_{}", call.kernel, c,
+                                      call.names[call.tables.size() + call.inputs.size() + j]);
+      bool in_place = false;
+      std::size_t offset = 0;
+      for (std::size_t a = 0; a < program.outputs.size() && !in_place; ++a) {
+        const std::size_t size = program.outputs[a].size;
+        in_place = size == call.outputs[j] && !output_in_place[a];
+        for (std::size_t k = 0; in_place && k < size; ++k)
+          in_place = program.stored[offset + k] == first + static_cast<int>(k);
+        if (in_place) {
+          array = std::string(program.outputs[a].spec.name);
+          output_in_place[a] = true;
+        }
+        offset += size;
+      }
+      call_in_place[c].push_back(in_place);
+      call_arrays[c].push_back(array);
+      first += static_cast<int>(call.outputs[j]);
+    }
+  }
+  auto result_name = [&](const Node<T>& n) {
+    const int c = nodes[n.a].a;
+    std::size_t index = static_cast<std::size_t>(n.input);
+    std::size_t j = 0;
+    while (index >= calls[c].outputs[j]) index -= calls[c].outputs[j++];
+    return fmt::format("{}[{}]", call_arrays[c][j], index);
+  };
 
   // Shared structure: sections of the same shape (a right leg's and a left leg's, a chain's
   // links) run one function over a table of their constants; the operations and their order
@@ -262,6 +348,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     if (is_trig(n))
       return fmt::format("trig.{}_q[{}]", n.op == Op::Sin ? "sin" : "cos",
                          program.graph.inputs[nodes[n.a].input].index);
+    if (n.op == Op::Result) return result_name(n);
     return name[id];
   };
   auto expression = [&](const Node<T>& n, auto&& arg) {
@@ -325,11 +412,8 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     else if (is_trig(n))
       used["trig"] = true;
   };
-  for (std::size_t id = 0; id < nodes.size(); ++id) {
-    if (!is_op[id]) continue;
-    if (nodes[id].a >= 0) use(nodes[id].a);
-    if (nodes[id].b >= 0) use(nodes[id].b);
-  }
+  for (std::size_t id = 0; id < nodes.size(); ++id)
+    if (is_op[id]) program.graph.for_each_operand(static_cast<int>(id), use);
   for (const int id : program.stored) use(id);
 
   std::string& out = code.body;
@@ -345,6 +429,57 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   if (w_size > 0)
     out += fmt::format("    {} w[{}];  // the outputs of the sections that shared functions compute\n\n",
                        type, w_size);
+  // a kernel call: its tables, the arrays it reads (an array another call wrote is passed as it
+  // is, the same entries gathered once), the arrays it writes, and the call
+  std::map<std::vector<int>, std::string> gathered;
+  auto kernel_call = [&](int c) {
+    const KernelRecord& call = calls[c];
+    std::string text = fmt::format("    // dyngen::kernels::{}: {}\n", call.kernel,
+                                   to_string(count_ops_of(call)));
+    std::vector<std::string> arguments;
+    for (const int x : call.ints) arguments.push_back(std::to_string(x));
+    for (std::size_t t = 0; t < call.tables.size(); ++t) {
+      std::vector<std::string> items;
+      for (const int x : call.tables[t]) items.push_back(std::to_string(x));
+      const std::string table = fmt::format("{}_{}_{}", call.kernel, c, call.names[t]);
+      text += fmt::format("    static constexpr int {}[] = {};\n", table, braced_list(items));
+      arguments.push_back(table);
+    }
+    for (std::size_t j = 0; j < call.inputs.size(); ++j) {
+      const std::vector<int>& ids = call.inputs[j];
+      std::string array;
+      for (std::size_t d = 0; d < calls.size() && array.empty(); ++d) {
+        int first = calls[d].first_result;
+        for (std::size_t k = 0; k < calls[d].outputs.size(); ++k) {
+          bool same = calls[d].outputs[k] == ids.size();
+          for (std::size_t e = 0; same && e < ids.size(); ++e)
+            same = ids[e] == first + static_cast<int>(e);
+          if (same) array = call_arrays[d][k];
+          first += static_cast<int>(calls[d].outputs[k]);
+        }
+      }
+      if (array.empty()) {
+        const auto [it, added] =
+            gathered.emplace(ids, fmt::format("{}_{}_{}", call.kernel, c,
+                                              call.names[call.tables.size() + j]));
+        if (added) {
+          std::vector<std::string> items;
+          for (const int id : ids) items.push_back(operand(id));
+          text += fmt::format("    const {} {}[{}] = {};\n", type, it->second, ids.size(),
+                              braced_list(items));
+        }
+        array = it->second;
+      }
+      arguments.push_back(array);
+    }
+    for (std::size_t j = 0; j < call.outputs.size(); ++j) {
+      const std::string& array = call_arrays[c][j];
+      if (!call_in_place[c][j])
+        text += fmt::format("    {} {}[{}];\n", type, array, call.outputs[j]);
+      arguments.push_back(array);
+    }
+    return text + wrapped_call(fmt::format("dyngen::kernels::{}", call.kernel), arguments);
+  };
   std::vector<int> per_body(model.nbodies + 1, 0);
   const std::vector<std::string> prefixes = temporary_prefixes(model);
   for (const Section& s : sections) {
@@ -361,6 +496,10 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     }
     for (const int id : s.ops) {
       const Node<T>& n = nodes[id];
+      if (n.op == Op::Call) {
+        out += kernel_call(n.a);
+        continue;
+      }
       name[id] = fmt::format("{}_{}", prefixes[n.body + 1], per_body[n.body + 1]++);
       out += fmt::format("    const {} {} = {};\n", type, name[id], expression(n, operand));
     }
@@ -368,9 +507,16 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   }
   out += "    // ---- outputs\n";
   std::size_t stored = 0;
-  for (const ProgramArray& a : program.outputs)
-    for (std::size_t k = 0; k < a.size; ++k)
-      out += fmt::format("    {}[{}] = {};\n", a.spec.name, k, operand(program.stored[stored++]));
+  for (std::size_t a = 0; a < program.outputs.size(); ++a) {
+    const ProgramArray& array = program.outputs[a];
+    if (output_in_place[a])
+      out += fmt::format("    // {}: written by the kernel\n", array.spec.name);
+    else
+      for (std::size_t k = 0; k < array.size; ++k)
+        out += fmt::format("    {}[{}] = {};\n", array.spec.name, k,
+                           operand(program.stored[stored + k]));
+    stored += array.size;
+  }
   return code;
 }
 

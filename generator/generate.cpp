@@ -212,6 +212,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   result.warnings =
       precision_warnings(result.conditioning, with_aba, std::is_same_v<T, float>);
   std::string declarations, definitions, cases;
+  bool calls_kernels = false;
   for (const Algorithm& a : options.algorithms) {
     step(fmt::format("tracing {} ({})", a, scalar));
     // the runtime's count first, so that its unsimplified trace is gone before the other's
@@ -229,6 +230,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
           std::is_same_v<T, float> ? " (generate double: --scalar double)" : ""));
     }
     const OpCounts generated = count_ops(program);
+    calls_kernels = calls_kernels || !program.graph.calls.empty();
     const EmittedCode code = emit_code(program, model, options.structure);
     result.counts.push_back({a, generated, runtime, code.sections, code.shared_sections,
                              code.shared_functions});
@@ -301,9 +303,12 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                                                                         {"namespace", ns},
                                                                         {"scalar", scalar},
                                                                         {"joint_trig", emit_joint_trig(model)},
+                                                                        {"kernels_include", calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
                                                                         {"definitions", definitions}})});
   // the runtime's own header, verbatim: both sides compute sin and cos with the same code
   result.files.push_back({"dyngen_sincos.hpp", std::string(template_text("sincos.hpp"))});
+  if (calls_kernels)
+    result.files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
   result.files.push_back({ns + "_model.hpp", fill("model.hpp.in", {{"banner", commented(banner, "//")},
                                                                   {"namespace", ns},
                                                                   {"records", model_records<T>(model)},

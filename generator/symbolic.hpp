@@ -7,9 +7,11 @@
 // of identical nodes. Nothing is reassociated or fused.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -20,16 +22,31 @@
 
 namespace dyngen::gen {
 
-enum class Op : std::uint8_t { Const, Input, Neg, Add, Sub, Mul, Div, Sin, Cos };
+// Call: a kernel call, a = its index in Graph::calls; Result: an entry of its outputs, a = the
+// Call node, input = the entry's index in the call's outputs laid end to end.
+enum class Op : std::uint8_t { Const, Input, Neg, Add, Sub, Mul, Div, Sin, Cos, Call, Result };
+inline constexpr std::size_t op_kinds = 11;
 
 template <class T>
 struct Node {
   Op op;
   int a = -1, b = -1;  // operands (node ids)
   T value{};           // Const: the value; Input: unused
-  int input = -1;      // Input: index into Graph::inputs
+  int input = -1;      // Input: index into Graph::inputs; Result: see Op
   int body = -1;       // body whose step created the node (-1: none)
   Pass pass = Pass::Forward;
+};
+
+/// A recorded kernel call: what the emitter needs to print it.
+struct KernelRecord {
+  std::string kernel;
+  std::vector<int> ints;
+  std::vector<std::vector<int>> tables;
+  std::vector<std::vector<int>> inputs;  // node ids of each array read
+  std::vector<std::size_t> outputs;      // length of each array written
+  std::vector<std::string> names;        // of the arrays read, then of those written
+  std::array<long, op_kinds> ops{};      // operations its loops perform, by Op
+  int first_result = -1;                 // node id of its first Result
 };
 
 /// An input array element, e.g. q[3].
@@ -68,8 +85,30 @@ class Graph {
     pass_ = pass;
   }
 
+  /// Kernel calls of at least this many operations are recorded as calls; smaller ones, and
+  /// every call of an unsimplified graph, run their loops on Sym (inlined).
+  long call_kernels_from = 0;
+
+  /// Records a kernel call (KernelHook), or returns false to have it inlined.
+  template <class Run, class Call>
+  bool record_call(const Call& call, const Run& run);
+
+  /// The node ids an operation reads: a and b, or a Call's inputs.
+  template <class F>
+  void for_each_operand(int id, const F& f) const {
+    const Node<T>& n = nodes[id];
+    if (n.op == Op::Call) {
+      for (const std::vector<int>& array : calls[n.a].inputs)
+        for (const int x : array) f(x);
+      return;
+    }
+    if (n.a >= 0) f(n.a);
+    if (n.b >= 0) f(n.b);
+  }
+
   std::vector<Node<T>> nodes;
   std::vector<InputRef> inputs;
+  std::vector<KernelRecord> calls;
 
  private:
   struct Key {
@@ -230,6 +269,59 @@ template <class T> Sym<T> operator-(Sym<T> x) { return Sym<T>::node(graph<T>().u
 template <class T> Sym<T> sin(Sym<T> x) { return Sym<T>::node(graph<T>().unary(Op::Sin, x.id)); }
 template <class T> Sym<T> cos(Sym<T> x) { return Sym<T>::node(graph<T>().unary(Op::Cos, x.id)); }
 
+template <class T>
+template <class Run, class Call>
+bool Graph<T>::record_call(const Call& call, const Run& run) {
+  if (!simplify_) return false;
+  // count the loops' operations on fresh inputs in a scratch graph that keeps every operation
+  KernelRecord record;
+  {
+    Graph<T> scratch(false);
+    const Recording<T> recording(scratch);
+    std::vector<std::vector<Sym<T>>> in, out;
+    for (const auto& array : call.inputs) {
+      std::vector<Sym<T>>& x = in.emplace_back();
+      for (std::size_t k = 0; k < array.size(); ++k)
+        x.push_back(Sym<T>::node(scratch.input("x", static_cast<int>(k))));
+    }
+    for (const auto& array : call.outputs) out.emplace_back(array.size());
+    std::vector<std::span<const Sym<T>>> in_spans(in.begin(), in.end());
+    std::vector<std::span<Sym<T>>> out_spans(out.begin(), out.end());
+    run(std::span<const std::span<const Sym<T>>>(in_spans),
+        std::span<const std::span<Sym<T>>>(out_spans));
+    for (const Node<T>& n : scratch.nodes) ++record.ops[static_cast<std::size_t>(n.op)];
+    record.ops[static_cast<std::size_t>(Op::Const)] = 0;
+    record.ops[static_cast<std::size_t>(Op::Input)] = 0;
+  }
+  long total = 0;
+  for (const long k : record.ops) total += k;
+  if (total < call_kernels_from) return false;
+
+  record.kernel = call.kernel;
+  record.ints.assign(call.ints.begin(), call.ints.end());
+  for (const auto& table : call.tables) record.tables.emplace_back(table.begin(), table.end());
+  for (const auto& array : call.inputs) {
+    std::vector<int>& ids = record.inputs.emplace_back();
+    for (const Sym<T>& x : array) ids.push_back(x.id);
+  }
+  for (const auto& array : call.outputs) record.outputs.push_back(array.size());
+  for (const auto& name : call.names) record.names.emplace_back(name);
+  Node<T> node{Op::Call};
+  node.a = static_cast<int>(calls.size());
+  const int call_id = push(node);
+  record.first_result = static_cast<int>(nodes.size());
+  calls.push_back(std::move(record));
+  int entry = 0;
+  for (const auto& array : call.outputs)
+    for (Sym<T>& y : array) {
+      Node<T> result{Op::Result};
+      result.a = call_id;
+      result.input = entry++;
+      y = Sym<T>::node(push(result));
+    }
+  return true;
+}
+
 }  // namespace dyngen::gen
 
 namespace dyngen {
@@ -237,6 +329,14 @@ namespace dyngen {
 template <class T>
 struct TraceHook<gen::Sym<T>> {
   static void enter(int body, Pass pass) { gen::graph<T>().enter(body, pass); }
+};
+
+template <class T>
+struct KernelHook<gen::Sym<T>> {
+  template <class Run>
+  static bool record(const KernelCall<gen::Sym<T>>& call, const Run& run) {
+    return gen::graph<T>().record_call(call, run);
+  }
 };
 
 }  // namespace dyngen

@@ -19,13 +19,15 @@ const AlgorithmSpec<double>& algorithm_spec(const Algorithm& name) {
 }
 
 template <class T>
-Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool simplify) {
+Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool simplify,
+                 long call_kernels_from) {
   const AlgorithmSpec<Sym<T>>* spec = find_algorithm<Sym<T>>(algorithm);
   if (!spec) throw std::invalid_argument("no algorithm named '" + algorithm + "'");
   Program<T> program;
   program.algorithm = algorithm;
   program.graph = Graph<T>(simplify);
   Graph<T>& g = program.graph;
+  g.call_kernels_from = call_kernels_from;
   const Recording<T> recording(g);
   // the same conversion the check harness applies: double -> T -> constant nodes
   const Model<Sym<T>> m = model.cast<T>().template cast<Sym<T>>();
@@ -61,15 +63,14 @@ int first_non_finite_constant(const Program<T>& program) {
   for (int id = static_cast<int>(nodes.size()) - 1; id >= 0; --id) {
     if (!live[id]) continue;
     if (nodes[id].op == Op::Const && !std::isfinite(nodes[id].value)) first = id;
-    if (nodes[id].a >= 0) live[nodes[id].a] = true;
-    if (nodes[id].b >= 0) live[nodes[id].b] = true;
+    program.graph.for_each_operand(id, [&](int x) { live[x] = true; });
   }
   return first;
 }
 
 template int first_non_finite_constant<double>(const Program<double>&);
 template int first_non_finite_constant<float>(const Program<float>&);
-template Program<double> trace<double>(const Algorithm&, const Model<double>&, bool);
-template Program<float> trace<float>(const Algorithm&, const Model<double>&, bool);
+template Program<double> trace<double>(const Algorithm&, const Model<double>&, bool, long);
+template Program<float> trace<float>(const Algorithm&, const Model<double>&, bool, long);
 
 }  // namespace dyngen::gen

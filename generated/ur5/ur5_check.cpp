@@ -30,11 +30,11 @@
 //   rnea_derivatives
 //     generated: add 2000, mul 2032, div 0, neg 0, sin 6, cos 6
 //     runtime:   add 3488, mul 3834, div 0, neg 3, sin 6, cos 6
-//     0 of 10 link sections in 0 shared functions
+//     0 of 11 link sections in 0 shared functions
 //   aba_derivatives
 //     generated: add 3093, mul 3500, div 5, neg 81, sin 6, cos 6
-//     runtime:   add 8177, mul 9291, div 12, neg 114, sin 18, cos 18
-//     0 of 37 link sections in 0 shared functions
+//     runtime:   add 8249, mul 9291, div 12, neg 114, sin 18, cos 18
+//     0 of 39 link sections in 0 shared functions
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 1.7e+02, max 2.9e+02: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.026 (joint 'shoulder_pan_joint'), articulated inertias span 90:

@@ -57,13 +57,44 @@ T cos_of(T x) {
   return c;
 }
 
+/// Runs a recorded kernel call on values, as the emitted code does (dyngen_kernels.hpp): its
+/// outputs laid end to end.
+template <class T>
+std::vector<T> run_call(const KernelRecord& call, const std::vector<std::vector<T>>& in) {
+  std::vector<std::vector<T>> out;
+  for (const std::size_t size : call.outputs) out.emplace_back(size);
+  const auto& t = call.tables;
+  if (call.kernel == "derivative_pairs")
+    kernels::derivative_pairs(call.ints.at(0), t.at(0).data(), t.at(1).data(), t.at(2).data(),
+                              in.at(0).data(), in.at(1).data(), out.at(0).data(), out.at(1).data());
+  else if (call.kernel == "neg_product")
+    kernels::neg_product(call.ints.at(0), t.at(0).data(), t.at(1).data(), in.at(0).data(),
+                         in.at(1).data(), out.at(0).data());
+  else
+    ADD_FAILURE() << "no kernel " << call.kernel;
+  std::vector<T> flat;
+  for (const std::vector<T>& array : out) flat.insert(flat.end(), array.begin(), array.end());
+  return flat;
+}
+
 /// Runs a graph on input values, one operation per node, in T: what the emitted code does.
 template <class T>
 std::vector<T> evaluate(const Graph<T>& g, const std::vector<T>& inputs) {
   std::vector<T> v(g.nodes.size());
+  std::vector<std::vector<T>> results(g.calls.size());
   for (std::size_t id = 0; id < g.nodes.size(); ++id) {
     const Node<T>& n = g.nodes[id];
     switch (n.op) {
+      case Op::Call: {
+        std::vector<std::vector<T>> in;
+        for (const std::vector<int>& array : g.calls[n.a].inputs) {
+          std::vector<T>& x = in.emplace_back();
+          for (const int operand : array) x.push_back(v[operand]);
+        }
+        results[n.a] = run_call(g.calls[n.a], in);
+        break;
+      }
+      case Op::Result: v[id] = results[g.nodes[n.a].a].at(n.input); break;
       case Op::Const: v[id] = n.value; break;
       case Op::Input: v[id] = inputs.at(n.input); break;
       case Op::Neg: v[id] = -v[n.a]; break;
@@ -375,8 +406,9 @@ void PrintTo(const TraceCase& c, std::ostream* os) { *os << c.name(); }
 class Traced : public ::testing::TestWithParam<TraceCase> {};
 
 template <class T>
-void expect_traces_agree(const Model<double>& model, Algorithm algorithm) {
-  const Program<T> simplified = trace<T>(algorithm, model, true);
+void expect_traces_agree(const Model<double>& model, Algorithm algorithm,
+                         long call_kernels_from = default_call_kernels_from) {
+  const Program<T> simplified = trace<T>(algorithm, model, true, call_kernels_from);
   const Program<T> full = trace<T>(algorithm, model, false);
   ASSERT_EQ(simplified.graph.inputs.size(), full.graph.inputs.size());
   for (std::size_t k = 0; k < full.graph.inputs.size(); ++k) {
@@ -415,7 +447,7 @@ void expect_fully_simplified(const Graph<T>& g) {
   std::set<std::tuple<Op, int, int, Bits<T>>> seen;
   for (std::size_t id = 0; id < g.nodes.size(); ++id) {
     const Node<T>& n = g.nodes[id];
-    if (n.op == Op::Input) continue;
+    if (n.op == Op::Input || n.op == Op::Call || n.op == Op::Result) continue;
     const auto key = std::tuple{n.op, n.a, n.b,
                                 n.op == Op::Const ? std::bit_cast<Bits<T>>(n.value) : Bits<T>(0)};
     EXPECT_TRUE(seen.insert(key).second) << "node " << id << " duplicates an earlier one";
@@ -460,5 +492,51 @@ std::vector<TraceCase> trace_cases() {
 
 INSTANTIATE_TEST_SUITE_P(Robots, Traced, ::testing::ValuesIn(trace_cases()),
                          [](const auto& info) { return info.param.name(); });
+
+// ---- kernel calls
+
+/// The kernels that an algorithm's trace records as calls, in order.
+template <class T>
+std::vector<std::string> kernel_calls(const Program<T>& program) {
+  std::vector<std::string> names;
+  for (const KernelRecord& call : program.graph.calls) names.push_back(call.kernel);
+  return names;
+}
+
+// Recorded as calls (the code of big robots), the kernels compute the runtime's bits: the
+// recording keeps their arrays, results and order straight.
+TEST(KernelCalls, RecordedCallsComputeTheRuntimeBits) {
+  for (const char* robot : {"ur5.urdf", "panda.urdf"}) {
+    SCOPED_TRACE(robot);
+    const Model<double> model =
+        load_robot(std::string(DYNGEN_TEST_MODELS) + "/" + robot, dyngen::test::independent_mimics()).model;
+    for (const Algorithm a : {"rnea_derivatives", "aba_derivatives"}) {
+      SCOPED_TRACE(a);
+      expect_traces_agree<double>(model, a, 0);
+      expect_traces_agree<float>(model, a, 0);
+    }
+  }
+}
+
+TEST(KernelCalls, SmallCallsAreInlinedAndBigOnesRecorded) {
+  const Model<double> model =
+      load_robot(std::string(DYNGEN_TEST_MODELS) + "/ur5.urdf").model;
+  const std::vector<std::string> both{"derivative_pairs", "neg_product", "neg_product"};
+  EXPECT_EQ(kernel_calls(trace<double>("aba_derivatives", model, true, 0)), both);
+  EXPECT_TRUE(kernel_calls(trace<double>("aba_derivatives", model)).empty());
+  // the unsimplified trace, which counts the runtime's operations, runs every loop
+  EXPECT_TRUE(kernel_calls(trace<double>("aba_derivatives", model, false, 0)).empty());
+  // a call counts the operations of its loops: the inlined trace folds some of them away
+  const OpCounts called = count_ops(trace<double>("rnea_derivatives", model, true, 0));
+  const OpCounts inlined = count_ops(trace<double>("rnea_derivatives", model));
+  EXPECT_GT(called.total(), inlined.total());
+  const std::string code =
+      emit_code(trace<double>("aba_derivatives", model, true, 0), model, Structure::Shared).body;
+  EXPECT_NE(code.find("dyngen::kernels::derivative_pairs("), std::string::npos);
+  EXPECT_NE(code.find("dyngen::kernels::neg_product("), std::string::npos);
+  // the outputs that a kernel writes whole are passed to it, not copied
+  EXPECT_NE(code.find("dqdd_dq: written by the kernel"), std::string::npos) << code;
+  EXPECT_EQ(code.find("dqdd_dq[0] ="), std::string::npos);
+}
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include <span>
 
 #include "dyngen/joint.hpp"
+#include "dyngen/kernels.hpp"
 #include "dyngen/trace_hook.hpp"
 #include "dyngen/workspace.hpp"
 
@@ -71,42 +72,48 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
     ws.oF[i] = mul(ws.oIc[i], ws.oa[i]) + cross_force(ws.ov[i], ws.oBc[i].p);
   }
 
-  for (std::size_t e = 0; e < n * n; ++e) dtau_dq[e] = S{}, dtau_dv[e] = S{};
-
-  // backward pass: with body i's subtree summed, its rows against its own and its ancestors'
-  // columns, then its columns against its ancestors' rows; Ic_p += Ic_i, Bc_p += Bc_i,
-  // F_p += F_i (all in base coordinates: no transform)
+  // backward pass: with body i's subtree summed, the forces its columns pair with (Ic s and
+  // Bc^T s against its own and its ancestors' columns, P and Q against its ancestors' rows);
+  // Ic_p += Ic_i, Bc_p += Bc_i, F_p += F_i (all in base coordinates: no transform)
   for (int i = model.nbodies - 1; i >= 0; --i) {
     TraceHook<S>::enter(i, Pass::Backward);
     const int k = model.v_index[i];
-    const int dofs = joint_nv(model.joint_type[i]);
-    for (int d = 0; d < dofs; ++d) {
-      const std::size_t row = static_cast<std::size_t>(k + d) * n;
-      const Force<S> IcS = mul(ws.oIc[i], ws.s[k + d]);   // (S^T Ic)^T
-      const Force<S> BcS = mul_T(ws.oBc[i], ws.s[k + d]);  // (S^T Bc)^T
-      for (int b = i; b >= 0; b = model.parent[b])
-        for (int c = model.v_index[b]; c < model.v_index[b] + joint_nv(model.joint_type[b]); ++c) {
-          dtau_dq[row + c] = inner(IcS, ws.alpha[c]) + inner(BcS, ws.dv[c]);
-          dtau_dv[row + c] = inner(IcS, ws.beta[c]) + inner(BcS, ws.s[c]);
-        }
-    }
     const int p = model.parent[i];
-    if (p < 0) continue;
-    for (int d = 0; d < dofs; ++d) {
+    for (int d = 0; d < joint_nv(model.joint_type[i]); ++d) {
       const int c = k + d;
-      const Force<S> P = mul(ws.oIc[i], ws.alpha[c]) + mul(ws.oBc[i], ws.dv[c]) +
-                         cross_force(ws.s[c], ws.oF[i]);
-      const Force<S> Q = mul(ws.oIc[i], ws.beta[c]) + mul(ws.oBc[i], ws.s[c]);
-      for (int a = p; a >= 0; a = model.parent[a])
-        for (int r = model.v_index[a]; r < model.v_index[a] + joint_nv(model.joint_type[a]); ++r) {
-          dtau_dq[static_cast<std::size_t>(r) * n + c] = inner(P, ws.s[r]);
-          dtau_dv[static_cast<std::size_t>(r) * n + c] = inner(Q, ws.s[r]);
-        }
+      S* f = &ws.pair_force[24 * static_cast<std::size_t>(c)];
+      put(f, mul(ws.oIc[i], ws.s[c]));
+      put(f + 6, mul_T(ws.oBc[i], ws.s[c]));
+      // a root has no ancestors' rows
+      put(f + 12, p < 0 ? Force<S>{}
+                        : mul(ws.oIc[i], ws.alpha[c]) + mul(ws.oBc[i], ws.dv[c]) +
+                              cross_force(ws.s[c], ws.oF[i]));
+      put(f + 18, p < 0 ? Force<S>{} : mul(ws.oIc[i], ws.beta[c]) + mul(ws.oBc[i], ws.s[c]));
     }
+    if (p < 0) continue;
     ws.oIc[p] = ws.oIc[p] + ws.oIc[i];
     ws.oBc[p] = ws.oBc[p] + ws.oBc[i];
     ws.oF[p] = ws.oF[p] + ws.oF[i];
   }
+
+  // the pairs of joints: d tau_r / d(q, v)_c for c on r's path to the root, and the reverse
+  TraceHook<S>::enter(-1, Pass::Pairs);
+  for (std::size_t c = 0; c < n; ++c) {
+    S* m = &ws.pair_motion[24 * c];
+    put(m, ws.s[c]), put(m + 6, ws.dv[c]), put(m + 12, ws.alpha[c]), put(m + 18, ws.beta[c]);
+  }
+  const int ints[] = {model.nv};
+  const std::span<const int> tables[] = {ws.own_begin, ws.own_end, ws.previous};
+  const std::span<const S> inputs[] = {ws.pair_motion, ws.pair_force};
+  const std::span<S> outputs[] = {dtau_dq, dtau_dv};
+  const std::string_view names[] = {"own_begin", "own_end", "previous", "motion",
+                                    "force",     "dtau_dq", "dtau_dv"};
+  run_kernel<S>({"derivative_pairs", ints, tables, inputs, outputs, names},
+                [&](auto in, auto out) {
+                  kernels::derivative_pairs(model.nv, ws.own_begin.data(), ws.own_end.data(),
+                                            ws.previous.data(), in[0].data(), in[1].data(),
+                                            out[0].data(), out[1].data());
+                });
 }
 
 }  // namespace dyngen

@@ -264,6 +264,20 @@ Motion<S> scale(const Motion<S>& m, const S& k) {
   return {scale(m.ang, k), scale(m.lin, k)};
 }
 
+/// The 6 numbers of a motion, [angular; linear], into out[0..5].
+template <class S>
+void put(S* out, const Motion<S>& m) {
+  out[0] = m.ang.x, out[1] = m.ang.y, out[2] = m.ang.z;
+  out[3] = m.lin.x, out[4] = m.lin.y, out[5] = m.lin.z;
+}
+
+/// The 6 numbers of a force, [angular; linear], into out[0..5].
+template <class S>
+void put(S* out, const Force<S>& f) {
+  out[0] = f.ang.x, out[1] = f.ang.y, out[2] = f.ang.z;
+  out[3] = f.lin.x, out[4] = f.lin.y, out[5] = f.lin.z;
+}
+
 /// f . m, the power of a force on a motion
 template <class S>
 S inner(const Force<S>& f, const Motion<S>& m) {

@@ -17,12 +17,23 @@ struct Workspace {
         U(model.nbodies), D(model.nbodies), Dinv(model.nbodies), u(model.nbodies),
         zero(model.nv, S(0)), ov(model.nbodies), oa(model.nbodies), oIc(model.nbodies),
         oBc(model.nbodies), oF(model.nbodies), s(model.nv), dv(model.nv), alpha(model.nv),
-        beta(model.nv), subtree_end(model.nbodies, 0), qdd(model.nv) {
+        beta(model.nv), pair_motion(24 * static_cast<std::size_t>(model.nv)),
+        pair_force(pair_motion.size()), own_begin(model.nv), own_end(model.nv),
+        previous(model.nv), subtree_end(model.nbodies, 0), qdd(model.nv) {
     // the columns of the joints in body i's subtree are [v_index[i], subtree_end[i])
     for (int i = model.nbodies - 1; i >= 0; --i) {
       subtree_end[i] = std::max(subtree_end[i], model.v_index[i] + joint_nv(model.joint_type[i]));
       if (model.parent[i] >= 0)
         subtree_end[model.parent[i]] = std::max(subtree_end[model.parent[i]], subtree_end[i]);
+    }
+    // each column's joint and the column before it on its path to the root
+    for (int i = 0; i < model.nbodies; ++i) {
+      const int p = model.parent[i], k = model.v_index[i], end = k + joint_nv(model.joint_type[i]);
+      for (int c = k; c < end; ++c) {
+        own_begin[c] = k;
+        own_end[c] = end;
+        previous[c] = c > k ? c - 1 : p < 0 ? -1 : model.v_index[p] + joint_nv(model.joint_type[p]) - 1;
+      }
     }
     if (model.nv > max_matrix_nv) return;
     const std::size_t columns =
@@ -32,6 +43,14 @@ struct Workspace {
     u_columns.resize(columns);
     dtau_dq.resize(static_cast<std::size_t>(model.nv) * static_cast<std::size_t>(model.nv));
     dtau_dv.resize(dtau_dq.size());
+    // the rows of d tau that can be non-zero in column c: c's path to the root, then its subtree
+    product_begin.assign(1, 0);
+    for (int i = 0; i < model.nbodies; ++i)
+      for (int c = model.v_index[i]; c < model.v_index[i] + joint_nv(model.joint_type[i]); ++c) {
+        for (int k = own_end[c] - 1; k >= 0; k = previous[k]) product_rows.push_back(k);
+        for (int k = own_end[c]; k < subtree_end[i]; ++k) product_rows.push_back(k);
+        product_begin.push_back(static_cast<int>(product_rows.size()));
+      }
     has_matrix_buffers = true;
   }
 
@@ -63,6 +82,10 @@ struct Workspace {
   std::vector<InertiaVariation<S>> oBc;       // [nbodies]
   std::vector<Force<S>> oF;                   // [nbodies]
   std::vector<Motion<S>> s, dv, alpha, beta;  // [nv]
+  // the arguments of kernels::derivative_pairs: per column (s, dv, alpha, beta) and
+  // (Ic s, Bc^T s, P, Q), 24 numbers each; each column's joint and path to the root
+  std::vector<S> pair_motion, pair_force;           // [24 nv]
+  std::vector<int> own_begin, own_end, previous;    // [nv]
   // minv: per body and column of M^-1 (body * nv + column), pA, a and u of the unit torque
   std::vector<int> subtree_end;          // [nbodies]
   std::vector<Force<S>> pA_columns;      // [nbodies * nv] if nv <= max_matrix_nv
@@ -71,6 +94,9 @@ struct Workspace {
   // aba_derivatives: ABA's qdd and the derivatives of RNEA there
   std::vector<S> qdd;                    // [nv]
   std::vector<S> dtau_dq, dtau_dv;       // [nv * nv] if nv <= max_matrix_nv
+  // kernels::neg_product's rows of d tau that can be non-zero, per column
+  std::vector<int> product_begin;        // [nv + 1] if nv <= max_matrix_nv
+  std::vector<int> product_rows;         // [sum of path and subtree lengths] if nv <= max_matrix_nv
 };
 
 }  // namespace dyngen

@@ -1,0 +1,98 @@
+// dyngen kernels: the loops of the algorithms whose work grows faster than the number of bodies
+// (the pairs of joints in the derivatives of inverse dynamics, the product M^-1 d tau of the
+// derivatives of forward dynamics). The runtime calls them (dyngen::run_kernel), and generated
+// code calls this same file, copied into each package as dyngen_kernels.hpp, so both compute the
+// same bits; the generator records a call instead of unrolling the loops, which keeps a big
+// robot's code small. Self-contained C++17: no includes, no allocation.
+#pragma once
+
+// Generated code calls the kernels with constant tables: a compiler that specialised a kernel
+// for them would unroll its loops back into the code they replace (GCC -O3 then takes minutes
+// and gigabytes on a 36-DoF robot), so each kernel stays one function.
+#if defined(__clang__)
+#define DYNGEN_KERNEL __attribute__((noinline))
+#elif defined(__GNUC__)
+#define DYNGEN_KERNEL __attribute__((noinline, noclone))
+#else
+#define DYNGEN_KERNEL
+#endif
+
+namespace dyngen {
+namespace kernels {
+
+/// f . m for 6-vectors, in the order of spatial.hpp's inner: the angular part, then the linear
+/// part, each summed left to right.
+template <class S>
+inline S inner6(const S* f, const S* m) {
+  return (f[0] * m[0] + f[1] * m[1] + f[2] * m[2]) + (f[3] * m[3] + f[4] * m[4] + f[5] * m[5]);
+}
+
+/// The entries of d tau / dq and d tau / dv that pair joint column c with the columns r on its
+/// path to the root (rnea_derivatives.hpp has the equations). For each column, motion holds 24
+/// numbers, s, dv, alpha and beta, and force 24 numbers, Ic s, Bc^T s, P and Q (6 each,
+/// [angular; linear], base coordinates). Column c's own joint has the columns
+/// [own_begin[c], own_end[c]); the path goes from own_end[c] - 1 through previous[r] to -1.
+/// Every other entry of the n x n row-major outputs is zero.
+template <class S>
+DYNGEN_KERNEL void derivative_pairs(int n, const int* own_begin, const int* own_end, const int* previous,
+                      const S* motion, const S* force, S* dtau_dq, S* dtau_dv) {
+  for (int e = 0; e < n * n; ++e) dtau_dq[e] = S(0), dtau_dv[e] = S(0);
+  for (int c = 0; c < n; ++c) {
+    const S* IcS = force + 24 * c;
+    const S* BcS = IcS + 6;
+    const S* P = IcS + 12;
+    const S* Q = IcS + 18;
+    for (int r = own_end[c] - 1; r >= 0; r = previous[r]) {
+      const S* s = motion + 24 * r;
+      const S* dv = s + 6;
+      const S* alpha = s + 12;
+      const S* beta = s + 18;
+      // row c against the columns of its own joint and its ancestors
+      dtau_dq[c * n + r] = inner6(IcS, alpha) + inner6(BcS, dv);
+      dtau_dv[c * n + r] = inner6(IcS, beta) + inner6(BcS, s);
+      // column c against the rows of its strict ancestors
+      if (r < own_begin[c]) {
+        dtau_dq[r * n + c] = inner6(P, s);
+        dtau_dv[r * n + c] = inner6(Q, s);
+      }
+    }
+  }
+}
+
+/// acc[j] += B[k][c] A[k][r0 + j] for j < W and the rows k of column c of B listed in
+/// rows[rows_begin[c] .. rows_begin[c + 1]), in that order.
+template <int W, class S>
+inline void column_times_rows(int n, int c, int r0, const int* rows_begin, const int* rows,
+                              const S* A, const S* B, S* acc) {
+  for (int e = rows_begin[c]; e < rows_begin[c + 1]; ++e) {
+    const int k = rows[e];
+    const S b = B[k * n + c];
+    for (int j = 0; j < W; ++j) acc[j] = acc[j] + b * A[k * n + r0 + j];
+  }
+}
+
+/// C = -(A B) for row-major n x n matrices, A symmetric, and column c of B zero but in the rows
+/// rows[rows_begin[c] .. rows_begin[c + 1]) (M^-1 d tau: d tau's column of a joint is zero but
+/// in the rows of its path to the root and of its subtree). Each entry is summed over those rows
+/// in their order, for eight rows of C at a time, which a compiler may vectorise without
+/// reordering any sum.
+template <class S>
+DYNGEN_KERNEL void neg_product(int n, const int* rows_begin, const int* rows, const S* A,
+                               const S* B, S* C) {
+  for (int c = 0; c < n; ++c) {
+    int r0 = 0;
+    for (; r0 + 8 <= n; r0 += 8) {
+      S acc[8] = {S(0), S(0), S(0), S(0), S(0), S(0), S(0), S(0)};
+      column_times_rows<8>(n, c, r0, rows_begin, rows, A, B, acc);
+      for (int j = 0; j < 8; ++j) C[(r0 + j) * n + c] = -acc[j];
+    }
+    for (; r0 < n; ++r0) {
+      S acc[1] = {S(0)};
+      column_times_rows<1>(n, c, r0, rows_begin, rows, A, B, acc);
+      C[r0 * n + c] = -acc[0];
+    }
+  }
+}
+
+}  // namespace kernels
+}  // namespace dyngen
