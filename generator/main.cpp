@@ -64,9 +64,6 @@ std::vector<Algorithm> parse_algorithms(const std::string& text,
   return out;
 }
 
-/// What dyngen report measures: the algorithms its harness knows.
-const std::vector<Algorithm> report_algorithms{"rnea", "crba", "aba"};
-
 std::string comma_list(const std::vector<Algorithm>& names) {
   std::string text;
   for (const Algorithm& a : names) text += (text.empty() ? "" : ",") + a;
@@ -226,8 +223,9 @@ int eval_main(int argc, char** argv) {
 /// plot.
 int report_main(int argc, char** argv) {
   CLI::App app{"dyngen report: measures the error (against an MPFR reference) and the run time "
-               "of the runtime and the generated code in double and float, with FMA and with "
-               "-ffast-math, and of CRBA+LDLT, and writes report.md, report.json and report.svg"};
+               "of each algorithm by the runtime and the generated code in double and float, "
+               "with FMA and with -ffast-math, and of CRBA+LDLT, and writes report.md, "
+               "report.json and report.svg"};
   app.name("dyngen report");
   std::string input, output, algorithms = "rnea,crba,aba";
   ModelFlags flags;
@@ -237,7 +235,7 @@ int report_main(int argc, char** argv) {
                  "output directory (created if missing); the harness is built in DIR/harness")
       ->required();
   app.add_option("--algorithms", algorithms,
-                 "comma-separated subset of " + comma_list(report_algorithms) + ", or all")
+                 "comma-separated subset of " + comma_list(algorithm_names()) + ", or all")
       ->capture_default_str();
   app.add_option("--states", options.states, "random states for the errors")
       ->check(number_in(1, 10000000, true))
@@ -257,7 +255,7 @@ int report_main(int argc, char** argv) {
   app.add_flag("-q,--quiet", options.quiet, "print errors and warnings only");
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen report", [&] {
-    options.algorithms = parse_algorithms(algorithms, report_algorithms);
+    options.algorithms = parse_algorithms(algorithms, algorithm_names());
     options.model_flags = flags.text();
     options.package_dir = package_dir();
     options.command = "dyngen report";

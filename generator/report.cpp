@@ -59,6 +59,16 @@ bool has(const std::vector<Algorithm>& algorithms, Algorithm a) {
   return std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end();
 }
 
+/// The algorithms generated in float: all but those that divide by ABA's pivots where the float
+/// model moves no inertia at some joint.
+std::vector<Algorithm> float_algorithms(const Robot& robot, const std::vector<Algorithm>& all) {
+  if (joints_blocking_aba_in_float(robot.model).empty()) return all;
+  std::vector<Algorithm> kept;
+  for (const Algorithm& a : all)
+    if (!algorithm_spec(a).divides_by_pivots) kept.push_back(a);
+  return kept;
+}
+
 /// The generated code of one variant into dir/harness/<variant>; returns generation's
 /// conditioning estimate.
 numerics::Conditioning write_variant(const Robot& robot, const ReportOptions& options,
@@ -66,27 +76,62 @@ numerics::Conditioning write_variant(const Robot& robot, const ReportOptions& op
                                      bool with_model) {
   GenerateOptions g;
   g.name = name;
-  g.algorithms = options.algorithms;
-  // ABA in float is left out where the float model moves no inertia at some joint
-  if (single && !joints_blocking_aba_in_float(robot.model).empty())
-    g.algorithms.erase(std::remove(g.algorithms.begin(), g.algorithms.end(), "aba"),
-                       g.algorithms.end());
+  g.algorithms = single ? float_algorithms(robot, options.algorithms) : options.algorithms;
   g.single_precision = single;
   g.options_text = options.model_flags;
   const Generated generated = generate(robot, g);
   std::vector<GeneratedFile> files;
   for (const GeneratedFile& f : generated.files)
     if (f.name == name + "_dynamics.hpp" || f.name == name + "_dynamics.cpp" ||
-        f.name == "dyngen_sincos.hpp" || (with_model && f.name == name + "_model.hpp"))
+        f.name == "dyngen_sincos.hpp" || f.name == "dyngen_kernels.hpp" ||
+        (with_model && f.name == name + "_model.hpp"))
       files.push_back(f);
   write_package(dir.string(), files);
   return generated.conditioning;
 }
 
-const char* algorithm_title(const std::string& a) {
+std::string algorithm_title(const std::string& a) {
   if (a == "rnea") return "RNEA (inverse dynamics, tau)";
   if (a == "crba") return "CRBA (mass matrix, M)";
-  return "ABA (forward dynamics, qdd)";
+  if (a == "aba") return "ABA (forward dynamics, qdd)";
+  std::string outputs;
+  for (const ArraySpec& y : algorithm_spec(a).outputs)
+    outputs += (outputs.empty() ? "" : ", ") + std::string(y.name);
+  return fmt::format("{} ({})", a, outputs);
+}
+
+/// The harness's registrations of every variant of each algorithm: the runtime and the
+/// generated code in double (exact, FMA, fast-math) and float, and for ABA, when CRBA and RNEA
+/// are generated too, CRBA+LDLT.
+std::string harness_variants(const std::vector<Algorithm>& algorithms,
+                             const std::vector<Algorithm>& in_float, const std::string& name) {
+  std::string text;
+  for (const Algorithm& a : algorithms) {
+    const AlgorithmSpec<double>& spec = algorithm_spec(a);
+    std::string arguments;
+    for (std::size_t k = 0; k < spec.inputs.size(); ++k)
+      arguments += fmt::format("{}x[{}]", k ? ", " : "", k);
+    for (std::size_t k = 0; k < spec.outputs.size(); ++k) arguments += fmt::format(", y[{}]", k);
+    const auto generated = [&](const char* scalar, const std::string& ns, const std::string& label) {
+      return fmt::format(
+          "add<{0}>(\"{1}\", \"{2}\", [](const {0}* const* x, {0}* const* y) {{ {3}::{1}({4}); }});\n",
+          scalar, a, label, ns, arguments);
+    };
+    text += fmt::format("  add_runtime<double>(\"{}\");\n", a);
+    text += "  " + generated("double", name, "generated double");
+    text += "  if (fma) " + generated("double", name + "_fma", "generated double, FMA");
+    text += "  " + generated("double", name + "_fastmath", "generated double, fast-math");
+    text += fmt::format("  add_runtime<float>(\"{}\");\n", a);
+    if (std::find(in_float.begin(), in_float.end(), a) != in_float.end())
+      text += "  " + generated("float", name + "_float", "generated float");
+    if (a == "aba" && has(algorithms, "crba") && has(algorithms, "rnea"))
+      for (const auto& [scalar, ns] : {std::pair{"double", name}, std::pair{"float", name + "_float"}})
+        text += fmt::format(
+            "  add<{0}>(\"aba\", \"generated CRBA+LDLT {0}\", [](const {0}* const* x, {0}* const* y) {{\n"
+            "    ldlt_{0}({1}::crba, {1}::rnea, x[0], x[1], x[2], y[0]);\n  }});\n",
+            scalar, ns);
+  }
+  return text;
 }
 
 /// The speed-up of each result over the runtime of its algorithm and scalar type (CRBA+LDLT:
@@ -100,9 +145,18 @@ void add_speed_ups(nlohmann::json& results) {
   }
 }
 
+/// The algorithms of the results, in their order.
+std::vector<std::string> result_algorithms(const nlohmann::json& results) {
+  std::vector<std::string> names;
+  for (const nlohmann::json& r : results)
+    if (std::find(names.begin(), names.end(), r["algorithm"]) == names.end())
+      names.push_back(r["algorithm"]);
+  return names;
+}
+
 std::string markdown_tables(const nlohmann::json& results) {
   std::string out;
-  for (const char* a : {"rnea", "crba", "aba"}) {
+  for (const std::string& a : result_algorithms(results)) {
     std::string rows;
     for (const nlohmann::json& r : results) {
       if (r["algorithm"] != a) continue;
@@ -129,7 +183,7 @@ std::pair<std::string, std::string> plot_parts(const nlohmann::json& results, in
     if (std::find(variants.begin(), variants.end(), r["variant"]) == variants.end())
       variants.push_back(r["variant"]);
   std::vector<std::string> panel_data, panel_plots;
-  for (const char* a : {"rnea", "crba", "aba"}) {
+  for (const std::string& a : result_algorithms(results)) {
     std::string block, series;
     double x_lo = 1e300, x_hi = 0, y_lo = 1e300, y_hi = 0;
     int k = 0;
@@ -206,7 +260,10 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   };
 
   const std::vector<int> blocking_in_float = joints_blocking_aba_in_float(robot.model);
-  const bool float_aba = has(options.algorithms, "aba") && blocking_in_float.empty();
+  const std::vector<Algorithm> in_float = float_algorithms(robot, options.algorithms);
+  bool with_pivots = false;
+  for (const Algorithm& a : options.algorithms)
+    with_pivots = with_pivots || algorithm_spec(a).divides_by_pivots;
   step(1, "generating the code: double, float, double for FMA, double for fast-math");
   const numerics::Conditioning c =
       write_variant(robot, options, name, false, work / "double", true);
@@ -224,10 +281,7 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
                   {{"banner", "// " + banner},
                    {"name", name},
                    {"robot", safe_text(robot.name)},
-                   {"rnea", has(options.algorithms, "rnea") ? "1" : "0"},
-                   {"crba", has(options.algorithms, "crba") ? "1" : "0"},
-                   {"aba", has(options.algorithms, "aba") ? "1" : "0"},
-                   {"aba_float", float_aba ? "1" : "0"}}));
+                   {"variants", harness_variants(options.algorithms, in_float, name)}}));
 
   step(2, fmt::format("configuring the harness in {}", work.string()));
   const fs::path build = work / "build";
@@ -273,13 +327,16 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
       markdown_code(robot.name), markdown_code(report["robot_file"].get<std::string>()),
       robot.sha256, robot.model.nv, robot.model.nq,
       options.model_flags.empty() ? "" : ", options " + markdown_code(options.model_flags),
-      version, safe_text(conditioning_text(c, has(options.algorithms, "aba")), true));
-  if (has(options.algorithms, "aba") && !float_aba)
+      version, safe_text(conditioning_text(c, with_pivots), true));
+  std::string left_out;
+  for (const Algorithm& a : options.algorithms)
+    if (!has(in_float, a)) left_out += (left_out.empty() ? "" : ", ") + a;
+  if (!left_out.empty())
     summary += fmt::format(
-        "\n\nNo generated float ABA: once the model's constants are rounded to float, these "
+        "\n\nNo generated float ABA ({}): once the model's constants are rounded to float, these "
         "joints move no inertia, so it cannot be generated (the runtime's float ABA divides by "
         "zero there): {}.",
-        safe_text(joint_list(robot.model, blocking_in_float)));
+        left_out, safe_text(joint_list(robot.model, blocking_in_float)));
   const std::string markdown = fill(
       "report.md.in",
       {{"robot", markdown_code(robot.name)},

@@ -14,7 +14,12 @@
 #include <span>
 #include <vector>
 
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
 #include "dyngen/aba.hpp"
+#include "dyngen/algorithms.hpp"
 #include "dyngen/crba.hpp"
 #include "dyngen/numerics/random.hpp"
 #include "dyngen/rnea.hpp"
@@ -79,6 +84,22 @@ class ExactDynamics {
     const std::vector<Exact> eq = widen(q), eqd = widen(qd), etau = widen(tau);
     dyngen::aba<Exact>(model_, ws_, eq, eqd, etau, qdd);
     return qdd;
+  }
+
+  /// Any algorithm of the runtime's table (algorithms.hpp) by name: its outputs, given its
+  /// inputs in the table's order.
+  std::vector<std::vector<Exact>> run(std::string_view algorithm,
+                                      const std::vector<std::span<const double>>& inputs) {
+    const AlgorithmSpec<Exact>* spec = find_algorithm<Exact>(algorithm);
+    if (!spec) throw std::invalid_argument("no algorithm named " + std::string(algorithm));
+    mpfr::mpreal::set_default_prec(bits_);
+    std::vector<std::vector<Exact>> in, out;
+    for (const std::span<const double>& x : inputs) in.push_back(widen(x));
+    for (const ArraySpec& y : spec->outputs) out.emplace_back(extent_size(y.extent, model_.nq, model_.nv));
+    const std::vector<std::span<const Exact>> in_spans(in.begin(), in.end());
+    const std::vector<std::span<Exact>> out_spans(out.begin(), out.end());
+    spec->call(model_, ws_, in_spans, out_spans);
+    return out;
   }
 
  private:
