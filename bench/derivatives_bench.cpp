@@ -2,7 +2,9 @@
 // values they differentiate, finite differences of the generated ABA, the runtime's derivatives,
 // and minv beside CRBA followed by an LDL^T inverse, for the packages of bench/CMakeLists.txt's
 // derivative_package(). ns per call on seeded random states that change every call; each
-// generated function is first checked against the runtime.
+// generated function is first checked against the runtime. First it prints each function's
+// operations (add, mul, div, neg; sin and cos are in joint_trig), generated and runtime, as
+// dyngen's banner counts them.
 //
 // usage: dyngen_derivatives_bench [Google Benchmark flags]
 #include <benchmark/benchmark.h>
@@ -19,7 +21,9 @@
 #include "derivative_packages.hpp"
 #include "dyngen/dyngen.hpp"
 #include "dyngen/numerics/random.hpp"
+#include "emit.hpp"
 #include "robot.hpp"
+#include "trace.hpp"
 
 namespace dyngen::bench {
 namespace {
@@ -101,6 +105,28 @@ void crba_ldlt_inverse(Fixture& f, const numerics::State& s) {
       M.ldlt().solve(Eigen::MatrixXd::Identity(f.n, f.n));
 }
 
+/// The operation counts of the generated functions and of the runtime's, as a Markdown table.
+void print_operation_counts(const std::vector<std::unique_ptr<Fixture>>& fixtures) {
+  const char* functions[] = {"rnea", "aba", "gravity", "nle", "minv", "rnea_derivatives",
+                             "aba_derivatives"};
+  std::printf("operations per call, generated / runtime (add, mul, div, neg):\n\n| robot |");
+  for (const char* a : functions) std::printf(" %s |", a);
+  std::printf("\n|---|");
+  for (std::size_t k = 0; k < std::size(functions); ++k) std::printf("---:|");
+  std::printf("\n");
+  for (const auto& f : fixtures) {
+    std::printf("| %s |", f->p->name);
+    for (const char* a : functions) {
+      const auto arithmetic = [](const gen::OpCounts& c) { return c.add + c.mul + c.div + c.neg; };
+      std::printf(" %ld / %ld |", arithmetic(gen::count_ops(gen::trace<double>(a, f->model))),
+                  arithmetic(gen::count_ops(gen::trace<double>(a, f->model, false), false)));
+    }
+    std::printf("\n");
+  }
+  std::printf("\n");
+  std::fflush(stdout);
+}
+
 using Measure = void (*)(Fixture&, const numerics::State&);
 
 const std::map<std::string, Measure>& measures() {
@@ -112,6 +138,10 @@ const std::map<std::string, Measure>& measures() {
          f.p->aba(s.q.data(), s.qd.data(), s.tau.data(), f.a.data());
        }},
       {"crba", [](Fixture& f, const numerics::State& s) { f.p->crba(s.q.data(), f.a.data()); }},
+      {"gravity", [](Fixture& f, const numerics::State& s) { f.p->gravity(s.q.data(), f.a.data()); }},
+      {"nle", [](Fixture& f, const numerics::State& s) {
+         f.p->nle(s.q.data(), s.qd.data(), f.a.data());
+       }},
       {"minv", [](Fixture& f, const numerics::State& s) { f.p->minv(s.q.data(), f.a.data()); }},
       {"crba_ldlt_inverse", crba_ldlt_inverse},
       {"rnea_derivatives", [](Fixture& f, const numerics::State& s) {
@@ -156,6 +186,7 @@ int main(int argc, char** argv) {
       });
     }
   }
+  print_operation_counts(fixtures);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

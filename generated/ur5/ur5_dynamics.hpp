@@ -43,7 +43,8 @@
 
 /// Dynamics of robot 'ur5', specialised by dyngen: no loops over links (repeated link sections call shared functions),
 /// no heap, no exceptions, no dependency beyond <cmath> and dyngen_sincos.hpp (which comes with
-/// it), no state (thread-safe); C++17 or later.
+/// it, as does dyngen_kernels.hpp where a function calls a kernel), no state (thread-safe);
+/// C++17 or later.
 ///
 /// Arrays are plain C arrays of double, indexed by joint in the order of joint_names:
 ///   q[nq]       joint positions: rad (revolute), m (prismatic)
