@@ -152,6 +152,15 @@ const std::map<std::string, Measure>& measures() {
                               f.c.data());
        }},
       {"aba_finite_differences", finite_differences},
+      {"runtime_gravity", [](Fixture& f, const numerics::State& s) {
+         gravity<double>(f.model, f.ws, s.q, f.a);
+       }},
+      {"runtime_nle", [](Fixture& f, const numerics::State& s) {
+         nle<double>(f.model, f.ws, s.q, s.qd, f.a);
+       }},
+      {"runtime_minv", [](Fixture& f, const numerics::State& s) {
+         minv<double>(f.model, f.ws, s.q, f.a);
+       }},
       {"runtime_rnea_derivatives", [](Fixture& f, const numerics::State& s) {
          rnea_derivatives<double>(f.model, f.ws, s.q, s.qd, s.qdd, f.a, f.b);
        }},
