@@ -20,17 +20,36 @@
 namespace dyngen {
 namespace kernels {
 
-/// f . m for 6-vectors, in the order of spatial.hpp's inner: the angular part, then the linear
-/// part, each summed left to right.
+/// f . m for 6-vectors whose angular and linear parts are interleaved (x, x, y, y, z, z), in
+/// the order of spatial.hpp's inner: the angular part and the linear part, each summed left to
+/// right, then added.
 template <class S>
 inline S inner6(const S* f, const S* m) {
-  return (f[0] * m[0] + f[1] * m[1] + f[2] * m[2]) + (f[3] * m[3] + f[4] * m[4] + f[5] * m[5]);
+  return (f[0] * m[0] + f[2] * m[2] + f[4] * m[4]) + (f[1] * m[1] + f[3] * m[3] + f[5] * m[5]);
 }
+
+#if defined(__GNUC__)
+/// inner6 for double with GCC's (and clang's) vector types: the angular sum in one lane, the
+/// linear sum in the other, in the scalar order, then added.
+inline double inner6(const double* f, const double* m) {
+  typedef double pair __attribute__((vector_size(2 * sizeof(double))));
+  pair sum, a, b;
+  __builtin_memcpy(&a, f, sizeof a);
+  __builtin_memcpy(&b, m, sizeof b);
+  sum = a * b;
+  for (int k = 2; k < 6; k += 2) {
+    __builtin_memcpy(&a, f + k, sizeof a);
+    __builtin_memcpy(&b, m + k, sizeof b);
+    sum = sum + a * b;
+  }
+  return sum[0] + sum[1];
+}
+#endif
 
 /// The entries of d tau / dq and d tau / dv that pair joint column c with the columns r on its
 /// path to the root (rnea_derivatives.hpp has the equations). For each column, motion holds 24
-/// numbers, s, dv, alpha and beta, and force 24 numbers, Ic s, Bc^T s, P and Q (6 each,
-/// [angular; linear], base coordinates). Column c's own joint has the columns
+/// numbers, s, dv, alpha and beta, and force 24 numbers, Ic s, Bc^T s, P and Q (6 each, base
+/// coordinates, interleaved as inner6 takes them). Column c's own joint has the columns
 /// [own_begin[c], own_end[c]); the path goes from own_end[c] - 1 through previous[r] to -1.
 /// Every other entry of the n x n row-major outputs is zero.
 template <class S>
@@ -71,26 +90,63 @@ inline void column_times_rows(int n, int c, int r0, const int* rows_begin, const
   }
 }
 
+#if defined(__GNUC__)
+// column_times_rows for double and float with GCC's (and clang's) vector types, which GCC does
+// not use by itself here: W rows of C in vectors of LANES, each lane doing the scalar loop's
+// operations in its order, so that the bits are the scalar loop's.
+#define DYNGEN_VECTOR_COLUMN_TIMES_ROWS(W, S, LANES)                                           \
+  template <>                                                                                 \
+  inline void column_times_rows<W, S>(int n, int c, int r0, const int* rows_begin,            \
+                                      const int* rows, const S* A, const S* B, S* acc) {      \
+    typedef S lanes __attribute__((vector_size(LANES * sizeof(S))));                          \
+    lanes sum[W / LANES];                                                                     \
+    __builtin_memcpy(sum, acc, sizeof sum);                                                   \
+    for (int e = rows_begin[c]; e < rows_begin[c + 1]; ++e) {                                 \
+      const int k = rows[e];                                                                  \
+      lanes b;                                                                                \
+      for (int j = 0; j < LANES; ++j) b[j] = B[k * n + c];                                    \
+      for (int j = 0; j < W / LANES; ++j) {                                                   \
+        lanes a;                                                                              \
+        __builtin_memcpy(&a, A + k * n + r0 + j * LANES, sizeof a);                           \
+        sum[j] = sum[j] + b * a;                                                              \
+      }                                                                                       \
+    }                                                                                         \
+    __builtin_memcpy(acc, sum, sizeof sum);                                                   \
+  }
+DYNGEN_VECTOR_COLUMN_TIMES_ROWS(16, double, 2)
+DYNGEN_VECTOR_COLUMN_TIMES_ROWS(8, double, 2)
+DYNGEN_VECTOR_COLUMN_TIMES_ROWS(4, double, 2)
+DYNGEN_VECTOR_COLUMN_TIMES_ROWS(2, double, 2)
+DYNGEN_VECTOR_COLUMN_TIMES_ROWS(16, float, 4)
+DYNGEN_VECTOR_COLUMN_TIMES_ROWS(8, float, 4)
+DYNGEN_VECTOR_COLUMN_TIMES_ROWS(4, float, 4)
+#undef DYNGEN_VECTOR_COLUMN_TIMES_ROWS
+#endif
+
+/// Rows r0 .. r0 + W - 1 of column c of C = -(A B).
+template <int W, class S>
+inline void product_block(int n, int c, int r0, const int* rows_begin, const int* rows,
+                          const S* A, const S* B, S* C) {
+  S acc[W];
+  for (int j = 0; j < W; ++j) acc[j] = S(0);
+  column_times_rows<W>(n, c, r0, rows_begin, rows, A, B, acc);
+  for (int j = 0; j < W; ++j) C[(r0 + j) * n + c] = -acc[j];
+}
+
 /// C = -(A B) for row-major n x n matrices, A symmetric, and column c of B zero but in the rows
 /// rows[rows_begin[c] .. rows_begin[c + 1]) (M^-1 d tau: d tau's column of a joint is zero but
 /// in the rows of its path to the root and of its subtree). Each entry is summed over those rows
-/// in their order, for eight rows of C at a time, which a compiler may vectorise without
-/// reordering any sum.
+/// in their order; the rows of C go in blocks of sixteen, then eight, four, two and one.
 template <class S>
 DYNGEN_KERNEL void neg_product(int n, const int* rows_begin, const int* rows, const S* A,
                                const S* B, S* C) {
   for (int c = 0; c < n; ++c) {
     int r0 = 0;
-    for (; r0 + 8 <= n; r0 += 8) {
-      S acc[8] = {S(0), S(0), S(0), S(0), S(0), S(0), S(0), S(0)};
-      column_times_rows<8>(n, c, r0, rows_begin, rows, A, B, acc);
-      for (int j = 0; j < 8; ++j) C[(r0 + j) * n + c] = -acc[j];
-    }
-    for (; r0 < n; ++r0) {
-      S acc[1] = {S(0)};
-      column_times_rows<1>(n, c, r0, rows_begin, rows, A, B, acc);
-      C[r0 * n + c] = -acc[0];
-    }
+    for (; r0 + 16 <= n; r0 += 16) product_block<16>(n, c, r0, rows_begin, rows, A, B, C);
+    if (r0 + 8 <= n) product_block<8>(n, c, r0, rows_begin, rows, A, B, C), r0 += 8;
+    if (r0 + 4 <= n) product_block<4>(n, c, r0, rows_begin, rows, A, B, C), r0 += 4;
+    if (r0 + 2 <= n) product_block<2>(n, c, r0, rows_begin, rows, A, B, C), r0 += 2;
+    if (r0 < n) product_block<1>(n, c, r0, rows_begin, rows, A, B, C);
   }
 }
 
