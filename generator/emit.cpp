@@ -252,7 +252,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   const std::string& prefix = program.algorithm;
 
   // sin and cos of joint angles come precomputed in trig (joint_trig), so that one call of
-  // dyngen::sincos serves every function that takes the same q
+  // dyngen_sincos serves every function that takes the same q
   auto is_trig = [&](const Node<T>& n) {
     if (n.op != Op::Sin && n.op != Op::Cos) return false;
     const Node<T>& x = nodes[n.a];
@@ -325,6 +325,11 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     }
   }
   EmittedCode code;
+  code.angles.assign(static_cast<std::size_t>(model.nq), false);
+  for (std::size_t id = 0; id < nodes.size(); ++id)
+    if (live[id] && is_trig(nodes[id]))
+      code.angles[static_cast<std::size_t>(program.graph.inputs[nodes[nodes[id].a].input].index)] =
+          true;
   code.sections = static_cast<int>(sections.size());
   code.shared_functions = static_cast<int>(groups.size());
   int w_size = 0;
@@ -520,10 +525,13 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   return code;
 }
 
-std::string emit_joint_trig(const Model<double>& model) {
+std::string emit_joint_trig(const Model<double>& model, bool single_precision,
+                            const std::vector<bool>* angles) {
+  const char* sincos = single_precision ? "dyngen_sincosf" : "dyngen_sincos";
   std::vector<bool> revolute(model.nq, false);
   for (int i = 0; i < model.nbodies; ++i)
-    if (is_revolute(model.joint_type[i])) revolute[model.q_index[i]] = true;
+    if (is_revolute(model.joint_type[i]))
+      revolute[model.q_index[i]] = angles == nullptr || (*angles)[model.q_index[i]];
   // one array call per run of consecutive revolute entries, which the compiler can vectorise
   std::string out;
   for (int k = 0; k < model.nq;) {
@@ -534,11 +542,11 @@ std::string emit_joint_trig(const Model<double>& model) {
     int end = k;
     while (end < model.nq && revolute[end]) ++end;
     if (end - k == 1)
-      out += fmt::format("    dyngen::sincos(q[{0}], trig.sin_q[{0}], trig.cos_q[{0}]);\n", k);
+      out += fmt::format("    {1}(q[{0}], &trig.sin_q[{0}], &trig.cos_q[{0}]);\n", k, sincos);
     else
       out += fmt::format(
-          "    dyngen::sincos(q + {0}, trig.sin_q + {0}, trig.cos_q + {0}, {1});  // q[{0}..{2}]\n",
-          k, end - k, end - 1);
+          "    {3}_array(q + {0}, trig.sin_q + {0}, trig.cos_q + {0}, {1});  // q[{0}..{2}]\n",
+          k, end - k, end - 1, sincos);
     k = end;
   }
   if (out.empty())

@@ -48,14 +48,17 @@ struct EmittedCode {
   int sections = 0;          // runs of one body's operations in one pass
   int shared_sections = 0;   // of them, computed by a shared function
   int shared_functions = 0;
+  std::vector<bool> angles;  // by q index: whether the body reads sin or cos of that angle
 };
 
 /// The code of one traced function.
 template <class T>
 EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure);
 
-/// The body of joint_trig(q, trig): dyngen::sincos of every revolute joint's angle.
-std::string emit_joint_trig(const Model<double>& model);
+/// The body of joint_trig(q, trig): dyngen_sincos (dyngen_sincosf in single precision) of every
+/// revolute joint's angle, or of those marked in `angles` (by q index) where it is given.
+std::string emit_joint_trig(const Model<double>& model, bool single_precision,
+                            const std::vector<bool>* angles = nullptr);
 
 /// "revolute +z", "prismatic axis (0.6, 0, 0.8)"
 std::string joint_description(const Model<double>& model, int body);

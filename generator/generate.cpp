@@ -232,6 +232,17 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     const OpCounts generated = count_ops(program);
     calls_kernels = calls_kernels || !program.graph.calls.empty();
     const EmittedCode code = emit_code(program, model, options.structure);
+    // the plain form computes only the sines and cosines its body reads (rnea, say, leaves out
+    // the last joint's where that link's inertia is symmetric about its axis)
+    std::vector<bool> all_angles(code.angles.size(), false);
+    for (int i = 0; i < model.nbodies; ++i)
+      if (is_revolute(model.joint_type[i])) all_angles[model.q_index[i]] = true;
+    const bool some_angles = code.angles != all_angles &&
+                             std::find(code.angles.begin(), code.angles.end(), true) != code.angles.end();
+    const std::string trig_fill =
+        some_angles ? "    // the angles this function reads\n" +
+                          emit_joint_trig(model, std::is_same_v<T, float>, &code.angles)
+                    : std::string("    joint_trig(q, trig);\n");
     result.counts.push_back({a, generated, runtime, code.sections, code.shared_sections,
                              code.shared_functions});
 
@@ -258,6 +269,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                                             {"declaration", call},
                                             {"trig_declaration", trig_call},
                                             {"trig_arguments", trig_arguments},
+                                            {"trig_fill", trig_fill},
                                             {"counts", to_string(generated)},
                                             {"body", code.body}});
     cases += fill("function_check.cpp.in", {{"name", a}, {"namespace", ns}, {"arguments", arguments}});
@@ -288,6 +300,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
        fill("dynamics.hpp.in", {{"banner", commented(banner, "//")},
                                 {"robot", safe_text(robot.name)},
                                 {"scalar", scalar},
+                                {"sincos", std::is_same_v<T, float> ? "dyngen_sincosf" : "dyngen_sincos"},
                                 {"structure", options.structure == Structure::Shared
                                                   ? "repeated link sections call shared functions"
                                                   : "every link section in place"},
@@ -302,11 +315,11 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                                                                         {"name", ns},
                                                                         {"namespace", ns},
                                                                         {"scalar", scalar},
-                                                                        {"joint_trig", emit_joint_trig(model)},
+                                                                        {"joint_trig", emit_joint_trig(model, std::is_same_v<T, float>)},
                                                                         {"kernels_include", calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
                                                                         {"definitions", definitions}})});
   // the runtime's own header, verbatim: both sides compute sin and cos with the same code
-  result.files.push_back({"dyngen_sincos.hpp", std::string(template_text("sincos.hpp"))});
+  result.files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
   if (calls_kernels)
     result.files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
   result.files.push_back({ns + "_model.hpp", fill("model.hpp.in", {{"banner", commented(banner, "//")},

@@ -19,7 +19,7 @@ struct GeneratedFile {
 void write_file(const std::filesystem::path& path, const std::string& text);
 
 /// Whether dir holds a package that dyngen wrote and may replace: every file in it starts with
-/// dyngen's banner (or is the dyngen_sincos.hpp or dyngen_kernels.hpp it copies), at least one
+/// dyngen's banner (or is the dyngen_sincos.h (dyngen_sincos.hpp before 0.2) or dyngen_kernels.hpp it copies), at least one
 /// does, and every folder in it is a CMake build tree (has a CMakeCache.txt), such as the
 /// build/ of the README.
 bool is_dyngen_package(const std::filesystem::path& dir);

@@ -30,6 +30,9 @@ report=(
   libbenchmark-dev         # dyngen report's timings
   gnuplot-nox              # dyngen report's plot
 )
+firmware=(
+  gcc-arm-none-eabi qemu-system-arm  # tests/firmware: Cortex-M builds run under qemu
+)
 peers=(
   libmujoco-dev libgl-dev  # tests/peers/mujoco; MuJoCo's CMake config needs OpenGL
   liborocos-kdl-dev libkdl-parser-dev  # tests/peers/kdl
@@ -52,8 +55,8 @@ for job in "${jobs[@]}"; do
   case $job in
     report) packages+=("${report[@]}") ;;
     package) packages+=(dpkg-dev file) ;;  # CPack's dependency scan: dpkg-shlibdeps and file
-    test) packages+=("${report[@]}" "${peers[@]}") ;;
-    bench) packages+=("${report[@]}" "${peers[@]}" valgrind) ;;
+    test) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}") ;;
+    bench) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}" valgrind) ;;
     fuzz) packages+=(clang libclang-rt-dev) ;;
   esac
 done

@@ -30,5 +30,5 @@ grep -E "Test +#|tests passed" "$log"
 
 echo
 echo "The generated code is in gen/ur5/: ur5_dynamics.hpp (API and array layout),"
-echo "ur5_dynamics.cpp (rnea, crba, aba), dyngen_sincos.hpp (their sin and cos), ur5_model.hpp"
+echo "ur5_dynamics.cpp (rnea, crba, aba), dyngen_sincos.h (their sin and cos), ur5_model.hpp"
 echo "and ur5_check.cpp (the check). Done in $((SECONDS - start)) s."

@@ -21,14 +21,14 @@
 //   ABA may lose 1.6 digits, keeping about 14.3 in double and 5.6 in float
 #include "planar5_dynamics.hpp"
 
-#include "dyngen_sincos.hpp"
+#include "dyngen_sincos.h"
 
 namespace planar5 {
 
 void joint_trig(const double q[nq], JointTrig& trig) noexcept
 {
-    dyngen::sincos(q + 0, trig.sin_q + 0, trig.cos_q + 0, 3);  // q[0..2]
-    dyngen::sincos(q[4], trig.sin_q[4], trig.cos_q[4]);
+    dyngen_sincos_array(q + 0, trig.sin_q + 0, trig.cos_q + 0, 3);  // q[0..2]
+    dyngen_sincos(q[4], &trig.sin_q[4], &trig.cos_q[4]);
 }
 
 // Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q).
@@ -398,7 +398,9 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
 void crba(const double q[nq], double M[nv * nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    // the angles this function reads
+    dyngen_sincos_array(q + 1, trig.sin_q + 1, trig.cos_q + 1, 2);  // q[1..2]
+    dyngen_sincos(q[4], &trig.sin_q[4], &trig.cos_q[4]);
     crba_trig(q, trig, M);
 }
 

@@ -22,9 +22,9 @@
 #pragma once
 
 /// Dynamics of robot 'planar5', specialised by dyngen: no loops over links (repeated link sections call shared functions),
-/// no heap, no exceptions, no dependency beyond <cmath> and dyngen_sincos.hpp (which comes with
-/// it, as does dyngen_kernels.hpp where a function calls a kernel), no state (thread-safe);
-/// C++17 or later.
+/// no heap, no exceptions, no standard library and no dependency beyond dyngen_sincos.h (which
+/// comes with it, as does dyngen_kernels.hpp where a function calls a kernel), no state
+/// (thread-safe); C++17 or later.
 ///
 /// Arrays are plain C arrays of double, indexed by joint in the order of joint_names:
 ///   q[nq]       joint positions: rad (revolute), m (prismatic)
@@ -51,13 +51,13 @@ inline constexpr const char* joint_names[nv] = {
 /// Sines and cosines of the revolute joints' angles, trig.sin_q[k] = sin(q[k]); entries of
 /// other joints are never read. Each function below comes twice: f(q, ...) and
 /// f_trig(q, trig, ...), so that one joint_trig(q, trig) serves several calls at the same q.
-/// Both give the same bits when trig comes from joint_trig (or from dyngen::sincos).
+/// Both give the same bits when trig comes from joint_trig (or from dyngen_sincos of dyngen_sincos.h).
 struct JointTrig {
     double sin_q[nq];
     double cos_q[nq];
 };
 
-/// Fills trig for q, with dyngen::sincos (about 1 ulp).
+/// Fills trig for q, with dyngen_sincos (about 1 ulp).
 void joint_trig(const double q[nq], JointTrig& trig) noexcept;
 
 /// Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q).

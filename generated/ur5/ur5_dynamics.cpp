@@ -41,13 +41,13 @@
 //   ABA may lose 1.6 digits, keeping about 14.4 in double and 5.6 in float
 #include "ur5_dynamics.hpp"
 
-#include "dyngen_sincos.hpp"
+#include "dyngen_sincos.h"
 
 namespace ur5 {
 
 void joint_trig(const double q[nq], JointTrig& trig) noexcept
 {
-    dyngen::sincos(q + 0, trig.sin_q + 0, trig.cos_q + 0, 6);  // q[0..5]
+    dyngen_sincos_array(q + 0, trig.sin_q + 0, trig.cos_q + 0, 6);  // q[0..5]
 }
 
 // Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q).
@@ -651,7 +651,8 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
 void rnea(const double q[nq], const double v[nv], const double a[nv], double tau[nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    // the angles this function reads
+    dyngen_sincos_array(q + 1, trig.sin_q + 1, trig.cos_q + 1, 5);  // q[1..5]
     rnea_trig(q, trig, v, a, tau);
 }
 
@@ -972,7 +973,8 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
 void crba(const double q[nq], double M[nv * nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    // the angles this function reads
+    dyngen_sincos_array(q + 1, trig.sin_q + 1, trig.cos_q + 1, 5);  // q[1..5]
     crba_trig(q, trig, M);
 }
 
@@ -2306,7 +2308,8 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
 void aba(const double q[nq], const double v[nv], const double tau[nv], double qdd[nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    // the angles this function reads
+    dyngen_sincos_array(q + 1, trig.sin_q + 1, trig.cos_q + 1, 5);  // q[1..5]
     aba_trig(q, trig, v, tau, qdd);
 }
 
@@ -2470,7 +2473,8 @@ void gravity_trig(const double q[nq], const JointTrig& trig, double g[nv]) noexc
 void gravity(const double q[nq], double g[nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    // the angles this function reads
+    dyngen_sincos_array(q + 1, trig.sin_q + 1, trig.cos_q + 1, 5);  // q[1..5]
     gravity_trig(q, trig, g);
 }
 
@@ -3038,7 +3042,8 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
 void nle(const double q[nq], const double v[nv], double h[nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    // the angles this function reads
+    dyngen_sincos_array(q + 1, trig.sin_q + 1, trig.cos_q + 1, 5);  // q[1..5]
     nle_trig(q, trig, v, h);
 }
 
@@ -4270,7 +4275,8 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
 void minv(const double q[nq], double Minv[nv * nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    // the angles this function reads
+    dyngen_sincos_array(q + 1, trig.sin_q + 1, trig.cos_q + 1, 5);  // q[1..5]
     minv_trig(q, trig, Minv);
 }
 

@@ -1,7 +1,8 @@
-// dyngen::sincos (sincos.hpp) against MPFR: the error in ulps of sin and cos, double and float,
-// over dense random samples, every binade up to DBL_MAX, the doubles nearest to multiples of
-// pi/2 (where argument reduction cancels) and to odd multiples of pi/4 (where the quadrant
-// changes), and the special values. The bounds are the measured maxima plus a small margin.
+// dyngen::sincos (sincos.hpp, sincos.h) against MPFR: the error in ulps of sin and cos, double
+// and float, over dense random samples, every binade up to the largest value, the arguments
+// nearest to multiples of pi/2 (where argument reduction cancels) and to odd multiples of pi/4
+// (where the quadrant changes), and the special values; for float also every argument of the fast
+// path, against the double function. The bounds are the measured maxima plus a small margin.
 #include "dyngen/sincos.hpp"
 
 #include <gtest/gtest.h>
@@ -28,10 +29,10 @@ constexpr double dbl_max = std::numeric_limits<double>::max();
 constexpr double pi = 3.141592653589793;
 
 /// Bounds, in ulps. Double: measured 0.732 here, 0.766 over 10^7 more random arguments in
-/// [-pi, pi] (a throwaway run), plus a small margin. Float: measured 0.50000 here; the float is
-/// the double result rounded, within 2^-36 relative before, so 0.5 + 2^-11 bounds it.
+/// [-pi, pi] (a throwaway run), plus a small margin. Float: measured 0.849 over every float of
+/// the fast path (FloatFastPathEveryArgument) and 0.849 over every 13th float above it (a throwaway run; the test takes every 61st).
 constexpr double double_bound = 0.78;
-constexpr double float_bound = 0.5 + 0x1p-11;
+constexpr double float_bound = 0.86;
 
 /// |got - exact| in ulps of the exact value's binade, for a format of p bits whose smallest
 /// normal binade is 2^emin (ulps are constant over the subnormals).
@@ -109,24 +110,25 @@ double nearest_multiple_of_pio4(long k) {
   return v.toDouble();
 }
 
-/// Doubles x = m 2^(E-52), m in [2^52, 2^53), close to multiples of pi/2: the `keep` of the
-/// binade [2^E, 2^(E+1)) nearest to one among the candidates tried, with |x - n pi/2|. x 2/pi
-/// = m alpha + an integer, alpha = 2^(E-52) 2/pi mod 1, and the denominators q of alpha's
-/// continued-fraction convergents give the smallest |q alpha - p| for their size; the smallest
-/// multiples of each q in [2^52, 2^53) are the candidates.
-std::vector<std::pair<double, double>> near_multiples_of_pio2(int E, int keep) {
+/// Numbers of `digits` significant bits x = m 2^(E-digits+1), m in [2^(digits-1), 2^digits),
+/// close to multiples of pi/2: the `keep` of the binade [2^E, 2^(E+1)) nearest to one among the
+/// candidates tried, with |x - n pi/2|. x 2/pi = m alpha + an integer, alpha = 2^(E-digits+1)
+/// 2/pi mod 1, and the denominators q of alpha's continued-fraction convergents give the
+/// smallest |q alpha - p| for their size; the smallest multiples of each q in the range of m are
+/// the candidates.
+std::vector<std::pair<double, double>> near_multiples_of_pio2(int E, int keep, int digits = 53) {
   const mp_prec_t prec = std::max(E, 0) + 256;  // alpha to 2^-190, beyond q^-2 for q < 2^53
   const mpreal two_over_pi = 2 / mpfr::const_pi(prec);
-  mpreal alpha = mpfr::ldexp(two_over_pi, E - 52);
+  mpreal alpha = mpfr::ldexp(two_over_pi, E - digits + 1);
   alpha -= floor(alpha);
-  const std::uint64_t m_lo = std::uint64_t{1} << 52, m_hi = std::uint64_t{1} << 53;
+  const std::uint64_t m_lo = std::uint64_t{1} << (digits - 1), m_hi = std::uint64_t{1} << digits;
   std::vector<std::pair<double, double>> candidates;  // (x, |x - n pi/2|)
   auto try_multiples = [&](std::uint64_t q) {
     for (std::uint64_t c = (m_lo + q - 1) / q, k = 0; k < 2 && c <= (m_hi - 1) / q; ++c, ++k) {
       const std::uint64_t m = c * q;
       mpreal t = alpha * mpreal(static_cast<unsigned long long>(m), prec);
       t -= round(t);
-      candidates.push_back({std::ldexp(static_cast<double>(m), E - 52),
+      candidates.push_back({std::ldexp(static_cast<double>(m), E - digits + 1),
                             (abs(t) * mpfr::const_pi(prec) / 2).toDouble()});
     }
   };
@@ -279,22 +281,29 @@ TEST(Sincos, ReductionsAgree) {
   for (long k = 400000; k < 400100; ++k) xs.push_back(nearest_multiple_of_pio4(4 * k));
   for (double x : xs) {
     double rh_fast, rl_fast, rh_huge, rl_huge;
-    const std::uint64_t n_fast = sincos_detail::reduce_fast(x, rh_fast, rl_fast) & 3;
-    const std::uint64_t n_huge = sincos_detail::reduce_huge(x, rh_huge, rl_huge);
+    const std::uint64_t n_fast = dyngen_sc_reduce_fast(x, &rh_fast, &rl_fast) & 3;
+    const std::uint64_t n_huge = dyngen_sc_reduce_huge(x, &rh_huge, &rl_huge);
     ASSERT_EQ(n_fast, n_huge) << "x = " << x;
     const double diff = (rh_fast - rh_huge) + (rl_fast - rl_huge);
     EXPECT_LE(std::fabs(diff), 0x1p-125 + 0x1p-104 * std::fabs(rh_fast)) << "x = " << x;
   }
 }
 
+float float_from_bits(std::uint32_t u) {
+  float x;
+  std::memcpy(&x, &u, sizeof x);
+  return x;
+}
+
 TEST(Sincos, Float) {
   // Every 10007th float bit pattern (427,520 finite floats, every binade, both signs), the floats
-  // nearest to k pi/2, and the float nearest to a multiple of pi/2 below 2^21.
+  // nearest to k pi/2, and in every binade the floats nearest to a multiple of pi/2, among them
+  // the nearest of all floats (|r| = 2^-29.2 at 0x1.f37c8ap+95, which sincos.h's reduction of
+  // huge floats is sized for) and the nearest below the fast path's bound (2^-27.8 at
+  // 0x1.f9cbe2p+7).
   std::vector<float> xs;
   for (std::uint64_t u = 0; u < (std::uint64_t{1} << 32); u += 10007) {
-    const std::uint32_t bits = static_cast<std::uint32_t>(u);
-    float x;
-    std::memcpy(&x, &bits, sizeof x);
+    const float x = float_from_bits(static_cast<std::uint32_t>(u));
     if (std::isfinite(x)) xs.push_back(x);
   }
   const MaxError strided = measure(xs);
@@ -307,14 +316,130 @@ TEST(Sincos, Float) {
     const float x = static_cast<float>(nearest_multiple_of_pio4(2 * k));
     for (float y : {std::nextafter(x, 0.0f), x, std::nextafter(x, 2 * x)}) xs.push_back(y);
   }
-  xs.push_back(0x1.f9cbe2p+7f);  // |x - n pi/2| = 2^-27.8, the smallest below 2^21
+  double min_r = 1, min_r_below_bound = 1;
+  float min_r_at = 0, min_r_below_bound_at = 0;
+  for (int E = -1; E <= 127; ++E) {
+    for (const auto& [x, r] : near_multiples_of_pio2(E, 4, 24)) {
+      xs.push_back(static_cast<float>(x));
+      if (r < min_r) min_r = r, min_r_at = static_cast<float>(x);
+      if (x < 0x1p8 && r < min_r_below_bound)
+        min_r_below_bound = r, min_r_below_bound_at = static_cast<float>(x);
+    }
+  }
+  std::printf("measured smallest |x - n pi/2| of a float: 2^%.2f at %a, below 2^8: 2^%.2f at %a\n",
+              std::log2(min_r), min_r_at, std::log2(min_r_below_bound), min_r_below_bound_at);
+  EXPECT_EQ(min_r_at, 0x1.f37c8ap+95f);
+  EXPECT_NEAR(std::log2(min_r), -29.21, 0.01);
+  EXPECT_EQ(min_r_below_bound_at, 0x1.f9cbe2p+7f);
+  EXPECT_NEAR(std::log2(min_r_below_bound), -27.83, 0.01);
   xs.push_back(std::numeric_limits<float>::max());
   const std::size_t n = xs.size();
   for (std::size_t i = 0; i < n; ++i) xs.push_back(-xs[i]);
   const MaxError hard = measure(xs);
-  hard.print("float, nearest to k pi/2, k <= 20000");
+  hard.print("float, nearest to k pi/2 (k <= 20000) and to multiples of pi/2 in every binade");
   EXPECT_LE(hard.sin, float_bound) << "at x = " << hard.sin_at;
   EXPECT_LE(hard.cos, float_bound) << "at x = " << hard.cos_at;
+}
+
+/// The float error in ulps against the double sincos, whose own error (0.78 double ulp) is
+/// 2^-29 of a float ulp: close enough to MPFR to judge every float, and 50 times faster.
+double float_ulps_against_double(float got, double exact) {
+  if (exact == 0) return got == 0 ? 0.0 : std::numeric_limits<double>::infinity();
+  const int binade = std::max(std::ilogb(exact), -126);
+  return std::fabs(static_cast<double>(got) - exact) * std::ldexp(1.0, 23 - binade);
+}
+
+TEST(Sincos, FloatFastPathEveryArgument) {
+  // Every positive float from 2^-12 to the fast path's bound 2^8 (226 million; below 2^-12 sin
+  // rounds to x and cos to 1, checked in FloatTiny), and every 7th negative one: the whole fast
+  // path, by exhaustion.
+  double worst_sin = 0, worst_cos = 0;
+  float sin_at = 0, cos_at = 0;
+  auto check = [&](float x) {
+    float s, c;
+    sincos(x, s, c);
+    double sd, cd;
+    sincos(static_cast<double>(x), sd, cd);
+    const double es = float_ulps_against_double(s, sd), ec = float_ulps_against_double(c, cd);
+    if (!(es <= worst_sin)) worst_sin = es, sin_at = x;
+    if (!(ec <= worst_cos)) worst_cos = ec, cos_at = x;
+  };
+  const std::uint32_t lo = 0x39800000u, hi = 0x43800000u;  // 2^-12, 2^8
+  for (std::uint32_t u = lo; u < hi; ++u) check(float_from_bits(u));
+  for (std::uint32_t u = lo; u < hi; u += 7) check(-float_from_bits(u));
+  std::printf("measured float fast path, every argument: sin %.4f ulp (x = %a), cos %.4f ulp (x = %a)\n",
+              worst_sin, sin_at, worst_cos, cos_at);
+  EXPECT_LE(worst_sin, float_bound) << "at x = " << sin_at;
+  EXPECT_LE(worst_cos, float_bound) << "at x = " << cos_at;
+}
+
+TEST(Sincos, FloatAboveTheFastPath) {
+  // Every 61st float from 2^8 to FLT_MAX (the Payne-Hanek path in integers), against the double
+  // function; and that reduction against the double one's on the same floats.
+  double worst_sin = 0, worst_cos = 0, worst_r = 0;
+  float sin_at = 0, cos_at = 0, r_at = 0;
+  for (std::uint32_t u = 0x43800000u; u < 0x7F800000u; u += 61) {
+    const float x = float_from_bits(u);
+    float s, c;
+    sincos(x, s, c);
+    double sd, cd;
+    sincos(static_cast<double>(x), sd, cd);
+    const double es = float_ulps_against_double(s, sd), ec = float_ulps_against_double(c, cd);
+    if (!(es <= worst_sin)) worst_sin = es, sin_at = x;
+    if (!(ec <= worst_cos)) worst_cos = ec, cos_at = x;
+    float rh, rl;
+    double dh, dl;
+    const std::uint32_t nf = dyngen_sc_reduce_hugef(x, &rh, &rl);
+    const std::uint64_t nd = dyngen_sc_reduce_huge(x, &dh, &dl);
+    ASSERT_EQ(nf, nd) << "x = " << x;
+    const double er = std::fabs((static_cast<double>(rh) + rl - dh) - dl) / std::fabs(dh);
+    if (!(er <= worst_r)) worst_r = er, r_at = x;
+  }
+  std::printf("measured float above 2^8, every 61st: sin %.4f ulp (x = %a), cos %.4f ulp (x = %a), "
+              "reduction within 2^%.1f relative (x = %a)\n",
+              worst_sin, sin_at, worst_cos, cos_at, std::log2(worst_r), r_at);
+  EXPECT_LE(worst_sin, float_bound) << "at x = " << sin_at;
+  EXPECT_LE(worst_cos, float_bound) << "at x = " << cos_at;
+  EXPECT_LE(worst_r, 0x1p-30) << "at x = " << r_at;
+}
+
+TEST(Sincos, FloatFastReductionEveryArgument) {
+  // The float reduction against the double one for every float from pi/4 to 2^8: the same
+  // quadrant, and rh + rl within 2^-40 relative (sincos.h's bound).
+  double worst = 0;
+  float at = 0;
+  for (std::uint32_t u = 0x3F490FDBu; u < 0x43800000u; ++u) {
+    const float x = float_from_bits(u);
+    float rh, rl;
+    double dh, dl;
+    const std::uint32_t nf = dyngen_sc_reduce_fastf(x, &rh, &rl);
+    const std::uint64_t nd = dyngen_sc_reduce_fast(x, &dh, &dl);
+    // Where x 2/pi is within rounding of a half-integer, the two may pick neighbouring n, and
+    // r differs by pi/2 (hi + lo, as in sincos.h)
+    const int step = static_cast<int>((nf - nd) & 3);
+    ASSERT_TRUE(step == 0 || ((step == 1 || step == 3) && std::fabs(dh) > 0.785)) << "x = " << x;
+    const double k = step == 0 ? 0.0 : step == 1 ? 1.0 : -1.0;
+    const double r = (dh - k * dyngen_sc_pio2_hi) + (dl - k * dyngen_sc_pio2_lo);
+    const double err = std::fabs((static_cast<double>(rh) + rl - (dh - k * dyngen_sc_pio2_hi)) -
+                                 (dl - k * dyngen_sc_pio2_lo)) /
+                       std::fabs(r);
+    if (!(err <= worst)) worst = err, at = x;
+  }
+  std::printf("measured float fast reduction: within 2^%.1f relative (x = %a)\n", std::log2(worst),
+              at);
+  EXPECT_LE(worst, 0x1p-40) << "at x = " << at;
+}
+
+TEST(Sincos, FloatTiny) {
+  // Below 2^-12, sin x rounds to x and cos x to 1, subnormals included.
+  for (std::uint32_t u = 0; u < 0x39800000u; u += 997) {
+    for (const float x : {float_from_bits(u), -float_from_bits(u)}) {
+      float s, c;
+      sincos(x, s, c);
+      EXPECT_EQ(std::memcmp(&s, &x, sizeof s), 0) << "x = " << x;
+      EXPECT_EQ(c, 1.0f) << "x = " << x;
+    }
+  }
 }
 
 // The generated code's joint_trig calls the array form, the runtime the scalar one: they must

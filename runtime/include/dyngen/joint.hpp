@@ -10,8 +10,8 @@
 
 namespace dyngen {
 
-/// s = sin(q), c = cos(q). float and double use dyngen::sincos, which the generated code also
-/// calls, so that both agree to the bit; other scalars (the generator's symbolic one, MPFR,
+/// s = sin(q), c = cos(q). float and double use dyngen::sincos (sincos.h), which the generated
+/// code also calls, so that both agree to the bit; other scalars (the generator's symbolic one, MPFR,
 /// long double) use their own sin and cos.
 template <class S>
 void joint_sincos(const S& q, S& s, S& c) {

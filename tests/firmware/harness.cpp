@@ -1,0 +1,72 @@
+// Runs a generated package's rnea, crba and aba on a fixed set of states and prints every
+// output's bits in hex, one line per call: built for a Cortex-M (under qemu, with semihosting)
+// and for the host, and the two printouts must be equal. The states come from integer
+// arithmetic scaled by powers of two, so both builds read the same numbers. DYNGEN_HEADER and
+// DYNGEN_NAMESPACE name the package; SCALAR is its scalar. No library beyond the package.
+#include DYNGEN_HEADER
+
+extern "C" void sh_write(const char* text);
+
+namespace {
+
+namespace robot = DYNGEN_NAMESPACE;
+
+unsigned state = 2463534242u;  // xorshift32
+
+/// A number in [-range, range) with 24 significant bits or fewer: exact in float and double.
+SCALAR next(int range_log2) {
+  state ^= state << 13;
+  state ^= state >> 17;
+  state ^= state << 5;
+  const int k = static_cast<int>(state >> 8) - (1 << 23);  // [-2^23, 2^23)
+  SCALAR scale = 1;
+  for (int e = 23 - range_log2; e > 0; --e) scale = scale / 2;
+  return static_cast<SCALAR>(k) * scale;
+}
+
+void print(const char* name, int index, const SCALAR* values, int count) {
+  char line[16 + 17 * 64];
+  char* out = line;
+  for (const char* c = name; *c != 0; ++c) *out++ = *c;
+  *out++ = ' ';
+  *out++ = static_cast<char>('0' + index);
+  for (int k = 0; k < count; ++k) {
+    unsigned char bytes[sizeof(SCALAR)];
+    __builtin_memcpy(bytes, &values[k], sizeof bytes);
+    *out++ = ' ';
+    for (int b = static_cast<int>(sizeof bytes) - 1; b >= 0; --b) {
+      *out++ = "0123456789abcdef"[bytes[b] >> 4];
+      *out++ = "0123456789abcdef"[bytes[b] & 15];
+    }
+    if (out - line > static_cast<long>(sizeof line) - 40) {
+      *out = 0;
+      sh_write(line);
+      out = line;
+    }
+  }
+  *out++ = '\n';
+  *out = 0;
+  sh_write(line);
+}
+
+}  // namespace
+
+int main() {
+  static_assert(robot::nq == robot::nv, "the harness takes robots without free joints");
+  for (int s = 0; s < 8; ++s) {
+    SCALAR q[robot::nq], v[robot::nv], a[robot::nv], tau[robot::nv], out[robot::nv],
+        M[robot::nv * robot::nv];
+    // angles up to 4 (and, in the last state, up to 512: the large-argument path of sin and cos)
+    for (SCALAR& x : q) x = next(s == 7 ? 9 : 2);
+    for (SCALAR& x : v) x = next(1);
+    for (SCALAR& x : a) x = next(2);
+    for (SCALAR& x : tau) x = next(4);
+    robot::rnea(q, v, a, out);
+    print("rnea", s, out, robot::nv);
+    robot::crba(q, M);
+    print("crba", s, M, robot::nv * robot::nv);
+    robot::aba(q, v, tau, out);
+    print("aba", s, out, robot::nv);
+  }
+  return 0;
+}
