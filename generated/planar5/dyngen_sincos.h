@@ -337,7 +337,8 @@ static inline void dyngen_sc_two_prodf(float a, float b, float* p, float* e) {
  * exact; rh + rl is r within about 2^-70. The smallest |r| of any float with n != 0 is 2^-27.8
  * (at 0x1.f9cbe2p+7, the test finds it again), so r keeps better than 2^-40 relative accuracy.
  * The test checks the reduction against the double one for every float below the bound. Why
- * 2^8: a fourth product would be exact only with one more part; joint angles stay far below. */
+ * 2^8: a larger n needs shorter parts, and more of them, for its products to stay exact; joint
+ * angles stay far below. */
 static const float dyngen_sc_fast_boundf = 0x1p8f;
 static const float dyngen_sc_two_over_pif = 0x1.45f306p-1f;
 static const float dyngen_sc_PF1 = 0x1.922p+0f;
