@@ -16,11 +16,18 @@ namespace dyngen::gen {
 
 inline constexpr const char* version = "0.1.0";
 
+/// The processor the code is meant for: dyngen warns where the scalar has no hardware there.
+enum class Target { Host, CortexM4F, CortexM7, CortexM33 };
+
+/// --target's names, in Target's order.
+inline constexpr const char* target_names[] = {"host", "cortex-m4f", "cortex-m7", "cortex-m33"};
+
 struct GenerateOptions {
   std::string name;                     // file prefix and C++ namespace
   std::vector<Algorithm> algorithms{"rnea", "crba", "aba"};
   bool single_precision = false;        // float instead of double
   Structure structure = Structure::Shared;
+  Target target = Target::Host;
   std::string options_text;             // the options as given, for the banner
   int conditioning_samples = 16;        // sampled states of the conditioning estimate
   std::function<void(const std::string&)> progress;  // told of each step as it starts, if set

@@ -1,5 +1,6 @@
 // dyngen ROBOT -o DIR: reads a robot, traces the runtime's algorithms for it and writes the
 // specialised code, the model tables, the bit-for-bit check and a CMakeLists.txt.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -280,7 +281,7 @@ int main(int argc, char** argv) {
                "(dyngen report --help)"};
   app.name("dyngen");
   std::string input, output, algorithms = "rnea,crba,aba", scalar = "double", name,
-      structure = "shared";
+      structure = "shared", target = "host";
   ModelFlags flags;
   bool quiet = false, force = false;
   app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
@@ -298,6 +299,12 @@ int main(int argc, char** argv) {
                  "unrolled: every link's code in place")
       ->check(CLI::IsMember({"unrolled", "shared"}))
       ->capture_default_str();
+  app.add_option("--target", target,
+                 "the processor the code is for: dyngen warns where the scalar has no hardware "
+                 "there (double on a Cortex-M4F or M33, whose FPU is single-precision)")
+      ->check(CLI::IsMember(std::vector<std::string>(std::begin(target_names),
+                                                     std::end(target_names))))
+      ->capture_default_str();
   flags.add_to(app);
   app.add_flag("--force", force,
                "write into DIR even when it holds files dyngen did not write (files of the same "
@@ -313,6 +320,9 @@ int main(int argc, char** argv) {
     options.algorithms = parse_algorithms(algorithms, algorithm_names());
     options.single_precision = scalar == "float";
     options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
+    options.target = static_cast<Target>(
+        std::find(std::begin(target_names), std::end(target_names), target) -
+        std::begin(target_names));
 
     if (!name.empty() && !is_identifier(name))
       throw InputError(fmt::format(
@@ -329,8 +339,9 @@ int main(int argc, char** argv) {
     const std::string algorithm_list = comma_list(options.algorithms);
     const Vec3<double>& g = robot.model.gravity;
     options.options_text =
-        fmt::format("--algorithms {} --scalar {} --structure {} --gravity {},{},{} --name {}",
-                    algorithm_list, scalar, structure, g.x, g.y, g.z, options.name);
+        fmt::format("--algorithms {} --scalar {} --structure {} --target {} --gravity {},{},{} "
+                    "--name {}",
+                    algorithm_list, scalar, structure, target, g.x, g.y, g.z, options.name);
     options.options_text += flags.text();
 
     if (!quiet) {

@@ -1,9 +1,13 @@
 // The conditioning estimate at generation time: the banner records it and dyngen warns when the
-// generated scalar will keep too few digits. (That the estimate tracks the errors measured
-// against the MPFR reference is tests/numerics/stiff_test's to check.)
+// generated scalar will keep too few digits, or has no hardware on the --target processor.
+// (That the estimate tracks the errors measured against the MPFR reference is
+// tests/numerics/stiff_test's to check.)
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -87,6 +91,29 @@ TEST_F(ConditioningCli, WarnsWhenFloatWouldKeepTooFewDigits) {
   EXPECT_NE(r.err.find("dyngen: warning: ABA in float is expected to keep only"),
             std::string::npos)
       << r.err;
+}
+
+TEST_F(ConditioningCli, WarnsOfDoubleOnASinglePrecisionFpu) {
+  const std::string urdf = models + "/ur5.urdf";
+  const std::string warning = "double code runs in software floating point";
+  for (const auto& [scalar, target, warns] :
+       {std::tuple{"double", "cortex-m4f", true}, std::tuple{"double", "cortex-m33", true},
+        std::tuple{"float", "cortex-m4f", false}, std::tuple{"double", "cortex-m7", false},
+        std::tuple{"double", "host", false}}) {
+    const CliResult r = run_dyngen({urdf, "-o", (dir / target).string(), "--scalar", scalar,
+                                    "--target", target, "--algorithms", "rnea"},
+                                   dir);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find(warning) != std::string::npos, warns) << scalar << " " << target;
+    std::ifstream in(dir / target / "ur5_dynamics.hpp");
+    const std::string header((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(header.find(std::string("--target ") + target), std::string::npos)
+        << "the banner records the target";
+  }
+  const CliResult unknown =
+      run_dyngen({urdf, "-o", (dir / "x").string(), "--target", "cortex-m0"}, dir);
+  EXPECT_EQ(unknown.status, 1);
+  EXPECT_NE(unknown.err.find("--target"), std::string::npos) << unknown.err;
 }
 
 TEST_F(ConditioningCli, RefusesFloatAbaWhereTheFloatModelMovesNoInertia) {
