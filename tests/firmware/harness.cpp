@@ -3,6 +3,10 @@
 // and for the host, and the two printouts must be equal. The states come from integer
 // arithmetic scaled by powers of two, so both builds read the same numbers. DYNGEN_HEADER and
 // DYNGEN_NAMESPACE name the package; SCALAR is its scalar. No library beyond the package.
+//
+// On the Cortex-M it also measures each function's stack: the 64 KiB below the stack pointer
+// are painted before each call and searched for the deepest word it overwrote; the most over
+// the states is printed as "stack NAME BYTES" after the outputs.
 #include DYNGEN_HEADER
 
 extern "C" void sh_write(const char* text);
@@ -23,6 +27,45 @@ SCALAR next(int range_log2) {
   for (int e = 23 - range_log2; e > 0; --e) scale = scale / 2;
   return static_cast<SCALAR>(k) * scale;
 }
+
+#if defined(__arm__)
+constexpr unsigned paint = 0xC0FFEE11u;
+constexpr int painted_words = 16384;
+
+/// Runs call with the stack below the caller's stack pointer painted; raises worst to the bytes
+/// it used. Inlined, so that the stack pointer read is the call site's.
+#define MEASURED(call, worst)                                                          \
+  do {                                                                                 \
+    unsigned* top;                                                                     \
+    __asm__ volatile("mov %0, sp" : "=r"(top));                                        \
+    volatile unsigned* const bottom = top - painted_words;                             \
+    for (volatile unsigned* p = bottom; p < top; ++p) *p = paint;                      \
+    call;                                                                              \
+    volatile unsigned* p = bottom;                                                     \
+    while (p < top && *p == paint) ++p;                                                \
+    const unsigned used = static_cast<unsigned>(reinterpret_cast<volatile char*>(top) - \
+                                                reinterpret_cast<volatile char*>(p));  \
+    if (used > worst) worst = used;                                                    \
+  } while (0)
+
+unsigned stack_rnea = 0, stack_crba = 0, stack_aba = 0;
+
+void print_count(const char* label, unsigned value) {
+  char line[64];
+  char* out = line;
+  for (const char* c = label; *c != 0; ++c) *out++ = *c;
+  char digits[12];
+  int n = 0;
+  do digits[n++] = static_cast<char>('0' + value % 10);
+  while ((value /= 10) != 0);
+  while (n > 0) *out++ = digits[--n];
+  *out++ = '\n';
+  *out = 0;
+  sh_write(line);
+}
+#else
+#define MEASURED(call, worst) call
+#endif
 
 void print(const char* name, int index, const SCALAR* values, int count) {
   char line[16 + 17 * 64];
@@ -61,12 +104,17 @@ int main() {
     for (SCALAR& x : v) x = next(1);
     for (SCALAR& x : a) x = next(2);
     for (SCALAR& x : tau) x = next(4);
-    robot::rnea(q, v, a, out);
+    MEASURED(robot::rnea(q, v, a, out), stack_rnea);
     print("rnea", s, out, robot::nv);
-    robot::crba(q, M);
+    MEASURED(robot::crba(q, M), stack_crba);
     print("crba", s, M, robot::nv * robot::nv);
-    robot::aba(q, v, tau, out);
+    MEASURED(robot::aba(q, v, tau, out), stack_aba);
     print("aba", s, out, robot::nv);
   }
+#if defined(__arm__)
+  print_count("stack rnea ", stack_rnea);
+  print_count("stack crba ", stack_crba);
+  print_count("stack aba ", stack_aba);
+#endif
   return 0;
 }
