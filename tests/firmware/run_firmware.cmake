@@ -4,7 +4,7 @@
 # stack, measured by the harness, against a bound from STACK_USAGE (GCC's -fstack-usage of the
 # package): the function's frame, plus the deepest of its callees' chains in the package (its
 # _trig form and then a shared function or a kernel; joint_trig; sin and cos's large-argument
-# path), plus 32 bytes where software double is linked (libgcc's ieee754-df routines push at
+# path; SOURCE, the package's .cpp, says whether the function calls joint_trig), plus 32 bytes where software double is linked (libgcc's ieee754-df routines push at
 # most four registers).
 execute_process(COMMAND ${NM} ${ELF} OUTPUT_VARIABLE symbols RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
@@ -42,10 +42,11 @@ string(REGEX REPLACE "stack [a-z_]+ [0-9]+\n" "" target "${target}")
 
 # frames by function name (the name before its parameters, templates' arguments dropped)
 file(STRINGS ${STACK_USAGE} usage)
+file(READ ${SOURCE} source)
 set(sincos_chain 0)
 set(leaf 0)
 foreach(line IN LISTS usage)
-  if(NOT line MATCHES "([A-Za-z0-9_]+)(<[^>]*>)?\\([^\t]*\t([0-9]+)\t(.*)")
+  if(NOT line MATCHES "([A-Za-z0-9_.]+)(<[^>]*>)?\\([^\t]*\t([0-9]+)\t(.*)")
     message(FATAL_ERROR "${STACK_USAGE}: cannot read '${line}'")
   endif()
   set(function ${CMAKE_MATCH_1})
@@ -54,9 +55,10 @@ foreach(line IN LISTS usage)
     message(FATAL_ERROR "${function} has a stack frame of no fixed size: ${CMAKE_MATCH_4}")
   endif()
   set(frame_${function} ${bytes})
-  if(function MATCHES "^dyngen_sc_")  # the large-argument path and what it calls
+  # by file: GCC names a specialised clone "constprop"
+  if(line MATCHES "dyngen_sincos\\.h:")  # the large-argument path and what it calls
     math(EXPR sincos_chain "${sincos_chain} + ${bytes}")
-  elseif(function MATCHES "_shape_[0-9]+$|^(derivative_pairs|neg_product|inner6)$")
+  elseif(line MATCHES "dyngen_kernels\\.hpp:" OR function MATCHES "_shape_[0-9]+$")
     if(bytes GREATER leaf)
       set(leaf ${bytes})
     endif()
@@ -70,8 +72,9 @@ foreach(function rnea crba aba)
   if(NOT DEFINED frame_${function} OR NOT DEFINED frame_${function}_trig)
     message(FATAL_ERROR "${STACK_USAGE} has no frame for ${function} or ${function}_trig")
   endif()
+  # f(q, ...) calls joint_trig, or computes the angles it reads itself (SOURCE says which)
   set(joint_trig 0)
-  if(DEFINED frame_joint_trig)
+  if(source MATCHES " ${function}\\([^)]*\\) noexcept\n{\n    JointTrig trig;\n    joint_trig\\(")
     set(joint_trig ${frame_joint_trig})
   endif()
   math(EXPR via_trig "${frame_${function}_trig} + ${leaf}")
