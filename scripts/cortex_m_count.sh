@@ -28,7 +28,7 @@ for cpu in m4f m7; do
     m4f) flags="-mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard -mthumb" machine=mps2-an386 ;;
     m7) flags="-mcpu=cortex-m7 -mfpu=fpv5-d16 -mfloat-abi=hard -mthumb" machine=mps2-an500 ;;
   esac
-  arm-none-eabi-gcc $flags $common -std=c99 -c tests/firmware/startup.c -o "$work/startup.o"
+  arm-none-eabi-gcc $flags $common -std=c99 -c examples/firmware/startup.c -o "$work/startup.o"
   arm-none-eabi-g++ $flags $common -std=c++17 -fno-exceptions -fno-rtti -I"$work/gen" \
     -c "$work/gen/robot_dynamics.cpp" -o "$work/dynamics.o"
   counts=()
@@ -38,7 +38,7 @@ for cpu in m4f m7; do
       '-DDYNGEN_HEADER="robot_dynamics.hpp"' -DDYNGEN_NAMESPACE=robot -DSCALAR="$scalar" \
       "-DCALL=$([ "$call" = "static_cast<void>(0)" ] && echo "$call" || echo "robot::$call")" \
       -c tests/firmware/count_harness.cpp -o "$work/harness.o"
-    arm-none-eabi-g++ $flags -nostdlib -Wl,--gc-sections -T tests/firmware/cortex_m.ld \
+    arm-none-eabi-g++ $flags -nostdlib -Wl,--gc-sections -T examples/firmware/cortex_m.ld \
       "$work/startup.o" "$work/harness.o" "$work/dynamics.o" -lgcc -o "$work/count.elf"
     flash=$(arm-none-eabi-size -A "$work/count.elf" | awk '$1 == ".text" || $1 == ".data" {s += $2} END {print s}')
     if [ -z "$baseline" ]; then

@@ -1,17 +1,19 @@
-/* The least a Cortex-M needs to run a test under qemu (mps2-an386, mps2-an500): the vector
- * table, .data copied and .bss cleared, the FPU switched on, and ARM semihosting for output and
- * the exit code. No C library. */
+/* The least a Cortex-M needs to run under qemu (mps2-an386 = Cortex-M4F, mps2-an500 =
+ * Cortex-M7): the vector table, .data copied and .bss cleared, the FPU switched on, and ARM
+ * semihosting for output and the exit code. No C library. A program may define
+ * systick_handler; the others' faults print "fault" and exit with status 3. */
 extern unsigned _sidata[], _sdata[], _edata[], _sbss[], _ebss[], _estack[];
 int main(void);
 void reset_handler(void);
 void fault_handler(void);
+void systick_handler(void) __attribute__((weak, alias("fault_handler")));
 void sh_write(const char* text);
 void sh_exit(int code);
 
 __attribute__((section(".vectors"), used)) void (*const vectors[16])(void) = {
     (void (*)(void))_estack, reset_handler, fault_handler, fault_handler, fault_handler,
     fault_handler, fault_handler, 0, 0, 0, 0, fault_handler, fault_handler, 0, fault_handler,
-    fault_handler};
+    systick_handler};
 
 static int semihost(int operation, const void* argument) {
   register int r0 __asm__("r0") = operation;
