@@ -55,7 +55,7 @@ std::string wrapped_call(const std::string& function, const std::vector<std::str
     const std::string item = arguments[k] + (k + 1 < arguments.size() ? ", " : ");");
     if (column + item.size() > 100 && column > head.size()) {
       while (text.back() == ' ') text.pop_back();
-      text += "\n" + std::string(head.size(), ' ');
+      text.append("\n").append(head.size(), ' ');  // GCC 12's -Wrestrict misfires on "\n" + string
       column = head.size();
     }
     text += item;
@@ -525,22 +525,28 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   return code;
 }
 
-std::string emit_joint_trig(const Model<double>& model, bool single_precision,
-                            const std::vector<bool>* angles) {
-  const char* sincos = single_precision ? "dyngen_sincosf" : "dyngen_sincos";
+namespace {
+
+std::vector<bool> revolute_angles(const Model<double>& model) {
   std::vector<bool> revolute(model.nq, false);
   for (int i = 0; i < model.nbodies; ++i)
-    if (is_revolute(model.joint_type[i]))
-      revolute[model.q_index[i]] = angles == nullptr || (*angles)[model.q_index[i]];
-  // one array call per run of consecutive revolute entries, which the compiler can vectorise
+    if (is_revolute(model.joint_type[i])) revolute[model.q_index[i]] = true;
+  return revolute;
+}
+
+/// dyngen_sincos calls for the marked q entries: one array call per run of consecutive ones,
+/// which the compiler can vectorise.
+std::string sincos_calls(const std::vector<bool>& marked, bool single_precision) {
+  const char* sincos = single_precision ? "dyngen_sincosf" : "dyngen_sincos";
+  const int nq = static_cast<int>(marked.size());
   std::string out;
-  for (int k = 0; k < model.nq;) {
-    if (!revolute[k]) {
+  for (int k = 0; k < nq;) {
+    if (!marked[k]) {
       ++k;
       continue;
     }
     int end = k;
-    while (end < model.nq && revolute[end]) ++end;
+    while (end < nq && marked[end]) ++end;
     if (end - k == 1)
       out += fmt::format("    {1}(q[{0}], &trig.sin_q[{0}], &trig.cos_q[{0}]);\n", k, sincos);
     else
@@ -549,9 +555,25 @@ std::string emit_joint_trig(const Model<double>& model, bool single_precision,
           k, end - k, end - 1, sincos);
     k = end;
   }
-  if (out.empty())
-    out = "    static_cast<void>(q);  // no revolute joint\n    static_cast<void>(trig);\n";
   return out;
+}
+
+}  // namespace
+
+std::string emit_joint_trig(const Model<double>& model, bool single_precision) {
+  const std::string out = sincos_calls(revolute_angles(model), single_precision);
+  if (out.empty())
+    return "    static_cast<void>(q);  // no revolute joint\n    static_cast<void>(trig);\n";
+  return out;
+}
+
+std::string emit_trig_fill(const Model<double>& model, bool single_precision,
+                           const std::vector<bool>& angles) {
+  if (angles == revolute_angles(model) ||
+      std::find(angles.begin(), angles.end(), true) == angles.end())
+    return "    joint_trig(q, trig);\n";
+  std::string out = "    // the angles this function reads\n";
+  return out.append(sincos_calls(angles, single_precision));
 }
 
 template OpCounts count_ops<double>(const Program<double>&, bool);

@@ -56,9 +56,14 @@ template <class T>
 EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure);
 
 /// The body of joint_trig(q, trig): dyngen_sincos (dyngen_sincosf in single precision) of every
-/// revolute joint's angle, or of those marked in `angles` (by q index) where it is given.
-std::string emit_joint_trig(const Model<double>& model, bool single_precision,
-                            const std::vector<bool>* angles = nullptr);
+/// revolute joint's angle.
+std::string emit_joint_trig(const Model<double>& model, bool single_precision);
+
+/// How a plain f(q, ...) fills its trig before calling f_trig: joint_trig(q, trig), or, where
+/// its body reads only some of the revolute angles (`angles`, by q index; ur5's rnea leaves out
+/// the first joint, which turns about gravity's axis), those angles alone.
+std::string emit_trig_fill(const Model<double>& model, bool single_precision,
+                           const std::vector<bool>& angles);
 
 /// "revolute +z", "prismatic axis (0.6, 0, 0.8)"
 std::string joint_description(const Model<double>& model, int body);

@@ -240,17 +240,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     const OpCounts generated = count_ops(program);
     calls_kernels = calls_kernels || !program.graph.calls.empty();
     const EmittedCode code = emit_code(program, model, options.structure);
-    // the plain form computes only the sines and cosines its body reads (rnea, say, leaves out
-    // the last joint's where that link's inertia is symmetric about its axis)
-    std::vector<bool> all_angles(code.angles.size(), false);
-    for (int i = 0; i < model.nbodies; ++i)
-      if (is_revolute(model.joint_type[i])) all_angles[model.q_index[i]] = true;
-    const bool some_angles = code.angles != all_angles &&
-                             std::find(code.angles.begin(), code.angles.end(), true) != code.angles.end();
-    const std::string trig_fill =
-        some_angles ? "    // the angles this function reads\n" +
-                          emit_joint_trig(model, std::is_same_v<T, float>, &code.angles)
-                    : std::string("    joint_trig(q, trig);\n");
+    const std::string trig_fill = emit_trig_fill(model, std::is_same_v<T, float>, code.angles);
     result.counts.push_back({a, generated, runtime, code.sections, code.shared_sections,
                              code.shared_functions});
 

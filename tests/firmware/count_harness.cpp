@@ -5,9 +5,10 @@
 // with nv <= 64), or nothing, for the size of the image without it.
 #include DYNGEN_HEADER
 
+#include "measure.hpp"
+
 namespace robot = DYNGEN_NAMESPACE;
 
-extern "C" void sh_write(const char* text);
 extern "C" __attribute__((noinline)) void marker_begin() { __asm__ volatile(""); }
 extern "C" __attribute__((noinline)) void marker_end() { __asm__ volatile(""); }
 
@@ -16,25 +17,8 @@ SCALAR q[64], v[64], a[64], tau[64], out[64], M[64 * 64];
 int main() {
   for (int k = 0; k < robot::nq; ++k) q[k] = static_cast<SCALAR>(k % 7 - 3) / 4;
   for (int k = 0; k < robot::nv; ++k) v[k] = a[k] = tau[k] = static_cast<SCALAR>(k % 5 - 2) / 2;
-  unsigned* top;
-  __asm__ volatile("mov %0, sp" : "=r"(top));
-  volatile unsigned* const bottom = top - 16384;
-  for (volatile unsigned* p = bottom; p < top; ++p) *p = 0xC0FFEE11u;
-  marker_begin();
-  CALL;
-  marker_end();
-  volatile unsigned* p = bottom;
-  while (p < top && *p == 0xC0FFEE11u) ++p;
-  unsigned used = static_cast<unsigned>(reinterpret_cast<volatile char*>(top) -
-                                        reinterpret_cast<volatile char*>(p));
-  char line[24] = "stack ";
-  char digits[12];
-  int n = 0, at = 6;
-  do digits[n++] = static_cast<char>('0' + used % 10);
-  while ((used /= 10) != 0);
-  while (n > 0) line[at++] = digits[--n];
-  line[at++] = '\n';
-  line[at] = 0;
-  sh_write(line);
+  unsigned stack = 0;
+  FIRMWARE_MEASURED(marker_begin(); CALL; marker_end(), stack);
+  firmware::print_count("stack ", stack);
   return 0;
 }

@@ -9,7 +9,7 @@
 // the states is printed as "stack NAME BYTES" after the outputs.
 #include DYNGEN_HEADER
 
-extern "C" void sh_write(const char* text);
+#include "measure.hpp"
 
 namespace {
 
@@ -29,40 +29,8 @@ SCALAR next(int range_log2) {
 }
 
 #if defined(__arm__)
-constexpr unsigned paint = 0xC0FFEE11u;
-constexpr int painted_words = 16384;
-
-/// Runs call with the stack below the caller's stack pointer painted; raises worst to the bytes
-/// it used. Inlined, so that the stack pointer read is the call site's.
-#define MEASURED(call, worst)                                                          \
-  do {                                                                                 \
-    unsigned* top;                                                                     \
-    __asm__ volatile("mov %0, sp" : "=r"(top));                                        \
-    volatile unsigned* const bottom = top - painted_words;                             \
-    for (volatile unsigned* p = bottom; p < top; ++p) *p = paint;                      \
-    call;                                                                              \
-    volatile unsigned* p = bottom;                                                     \
-    while (p < top && *p == paint) ++p;                                                \
-    const unsigned used = static_cast<unsigned>(reinterpret_cast<volatile char*>(top) - \
-                                                reinterpret_cast<volatile char*>(p));  \
-    if (used > worst) worst = used;                                                    \
-  } while (0)
-
+#define MEASURED(call, worst) FIRMWARE_MEASURED(call, worst)
 unsigned stack_rnea = 0, stack_crba = 0, stack_aba = 0;
-
-void print_count(const char* label, unsigned value) {
-  char line[64];
-  char* out = line;
-  for (const char* c = label; *c != 0; ++c) *out++ = *c;
-  char digits[12];
-  int n = 0;
-  do digits[n++] = static_cast<char>('0' + value % 10);
-  while ((value /= 10) != 0);
-  while (n > 0) *out++ = digits[--n];
-  *out++ = '\n';
-  *out = 0;
-  sh_write(line);
-}
 #else
 #define MEASURED(call, worst) call
 #endif
@@ -112,9 +80,9 @@ int main() {
     print("aba", s, out, robot::nv);
   }
 #if defined(__arm__)
-  print_count("stack rnea ", stack_rnea);
-  print_count("stack crba ", stack_crba);
-  print_count("stack aba ", stack_aba);
+  firmware::print_count("stack rnea ", stack_rnea);
+  firmware::print_count("stack crba ", stack_crba);
+  firmware::print_count("stack aba ", stack_aba);
 #endif
   return 0;
 }

@@ -349,44 +349,40 @@ double float_ulps_against_double(float got, double exact) {
   return std::fabs(static_cast<double>(got) - exact) * std::ldexp(1.0, 23 - binade);
 }
 
+/// Raises m to the float error of sincos(x) against the double function.
+void measure_against_double(float x, MaxError& m) {
+  float s, c;
+  sincos(x, s, c);
+  double sd, cd;
+  sincos(static_cast<double>(x), sd, cd);
+  const double es = float_ulps_against_double(s, sd), ec = float_ulps_against_double(c, cd);
+  if (!(es <= m.sin)) m.sin = es, m.sin_at = x;
+  if (!(ec <= m.cos)) m.cos = ec, m.cos_at = x;
+  ++m.count;
+}
+
 TEST(Sincos, FloatFastPathEveryArgument) {
   // Every positive float from 2^-12 to the fast path's bound 2^8 (226 million; below 2^-12 sin
   // rounds to x and cos to 1, checked in FloatTiny), and every 7th negative one: the whole fast
   // path, by exhaustion.
-  double worst_sin = 0, worst_cos = 0;
-  float sin_at = 0, cos_at = 0;
-  auto check = [&](float x) {
-    float s, c;
-    sincos(x, s, c);
-    double sd, cd;
-    sincos(static_cast<double>(x), sd, cd);
-    const double es = float_ulps_against_double(s, sd), ec = float_ulps_against_double(c, cd);
-    if (!(es <= worst_sin)) worst_sin = es, sin_at = x;
-    if (!(ec <= worst_cos)) worst_cos = ec, cos_at = x;
-  };
+  MaxError m;
   const std::uint32_t lo = 0x39800000u, hi = 0x43800000u;  // 2^-12, 2^8
-  for (std::uint32_t u = lo; u < hi; ++u) check(float_from_bits(u));
-  for (std::uint32_t u = lo; u < hi; u += 7) check(-float_from_bits(u));
-  std::printf("measured float fast path, every argument: sin %.4f ulp (x = %a), cos %.4f ulp (x = %a)\n",
-              worst_sin, sin_at, worst_cos, cos_at);
-  EXPECT_LE(worst_sin, float_bound) << "at x = " << sin_at;
-  EXPECT_LE(worst_cos, float_bound) << "at x = " << cos_at;
+  for (std::uint32_t u = lo; u < hi; ++u) measure_against_double(float_from_bits(u), m);
+  for (std::uint32_t u = lo; u < hi; u += 7) measure_against_double(-float_from_bits(u), m);
+  m.print("float fast path, every argument, against double");
+  EXPECT_LE(m.sin, float_bound) << "at x = " << m.sin_at;
+  EXPECT_LE(m.cos, float_bound) << "at x = " << m.cos_at;
 }
 
 TEST(Sincos, FloatAboveTheFastPath) {
   // Every 61st float from 2^8 to FLT_MAX (the Payne-Hanek path in integers), against the double
   // function; and that reduction against the double one's on the same floats.
-  double worst_sin = 0, worst_cos = 0, worst_r = 0;
-  float sin_at = 0, cos_at = 0, r_at = 0;
+  MaxError m;
+  double worst_r = 0;
+  float r_at = 0;
   for (std::uint32_t u = 0x43800000u; u < 0x7F800000u; u += 61) {
     const float x = float_from_bits(u);
-    float s, c;
-    sincos(x, s, c);
-    double sd, cd;
-    sincos(static_cast<double>(x), sd, cd);
-    const double es = float_ulps_against_double(s, sd), ec = float_ulps_against_double(c, cd);
-    if (!(es <= worst_sin)) worst_sin = es, sin_at = x;
-    if (!(ec <= worst_cos)) worst_cos = ec, cos_at = x;
+    measure_against_double(x, m);
     float rh, rl;
     double dh, dl;
     const std::uint32_t nf = dyngen_sc_reduce_hugef(x, &rh, &rl);
@@ -395,11 +391,11 @@ TEST(Sincos, FloatAboveTheFastPath) {
     const double er = std::fabs((static_cast<double>(rh) + rl - dh) - dl) / std::fabs(dh);
     if (!(er <= worst_r)) worst_r = er, r_at = x;
   }
-  std::printf("measured float above 2^8, every 61st: sin %.4f ulp (x = %a), cos %.4f ulp (x = %a), "
-              "reduction within 2^%.1f relative (x = %a)\n",
-              worst_sin, sin_at, worst_cos, cos_at, std::log2(worst_r), r_at);
-  EXPECT_LE(worst_sin, float_bound) << "at x = " << sin_at;
-  EXPECT_LE(worst_cos, float_bound) << "at x = " << cos_at;
+  m.print("float above 2^8, every 61st, against double");
+  std::printf("measured float reduction above 2^8: within 2^%.1f relative (x = %a)\n",
+              std::log2(worst_r), r_at);
+  EXPECT_LE(m.sin, float_bound) << "at x = " << m.sin_at;
+  EXPECT_LE(m.cos, float_bound) << "at x = " << m.cos_at;
   EXPECT_LE(worst_r, 0x1p-30) << "at x = " << r_at;
 }
 
