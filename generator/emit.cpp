@@ -245,7 +245,8 @@ std::string body_label(const Model<double>& model, int body) {
 }  // namespace
 
 template <class T>
-EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure) {
+EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure,
+                      const Dialect& dialect) {
   const auto& nodes = program.graph.nodes;
   const std::vector<bool> live = live_nodes(program);
   const char* type = std::is_same_v<T, float> ? "float" : "double";
@@ -268,6 +269,8 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   // Kernel calls: each array a call writes is named once, and an array of the function's
   // outputs that is exactly one of them is passed to the kernel to write in place
   const std::vector<KernelRecord>& calls = program.graph.calls;
+  if (dialect.c() && !calls.empty())
+    throw std::logic_error("internal error: a kernel call in C code");
   std::vector<std::vector<std::string>> call_arrays(calls.size());
   std::vector<std::vector<bool>> call_in_place(calls.size());
   std::vector<bool> output_in_place(program.outputs.size(), false);
@@ -351,7 +354,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
       return fmt::format("{}[{}]", in.array, in.index);
     }
     if (is_trig(n))
-      return fmt::format("trig.{}_q[{}]", n.op == Op::Sin ? "sin" : "cos",
+      return fmt::format("{}{}_q[{}]", dialect.trig_member(), n.op == Op::Sin ? "sin" : "cos",
                          program.graph.inputs[nodes[n.a].input].index);
     if (n.op == Op::Result) return result_name(n);
     return name[id];
@@ -381,7 +384,8 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
         groups[g].size(), users);
     const std::size_t nk = first.constants.size();
     if (nk > 0) {
-      code.helpers += fmt::format("constexpr {} {}_k[{}][{}] = {{\n", type, fn, groups[g].size(), nk);
+      code.helpers += fmt::format("{} {} {}_k[{}][{}] = {{\n", dialect.table(), type, fn,
+                                  groups[g].size(), nk);
       for (const int member : groups[g]) {
         std::string row;
         for (const int c : sections[member].constants)
@@ -390,9 +394,10 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
       }
       code.helpers += "};\n";
     }
-    code.helpers += fmt::format("static void {}({}const {} x[{}], {} y[{}]) noexcept\n{{\n", fn,
+    code.helpers += fmt::format("static void {}({}const {} x[{}], {} y[{}]){}\n{{\n", fn,
                                 nk > 0 ? fmt::format("const {} k[{}], ", type, nk) : "", type,
-                                first.inputs.size(), type, first.outputs.size());
+                                first.inputs.size(), type, first.outputs.size(),
+                                dialect.no_throw());
     std::map<int, std::string> local;
     for (std::size_t k = 0; k < first.inputs.size(); ++k)
       local[first.inputs[k]] = fmt::format("x[{}]", k);
@@ -428,7 +433,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   arrays.insert(q == arrays.end() ? q : q + 1, "trig");
   for (const std::string& array : arrays)
     if (!used[array])
-      out += fmt::format("    static_cast<void>({});  // {}\n\n", array,
+      out += fmt::format("    {};  // {}\n\n", dialect.discard(array),
                          array == "q" && used["trig"] ? "read only through trig"
                                                       : "no output of this robot depends on it");
   if (w_size > 0)
@@ -534,9 +539,11 @@ std::vector<bool> revolute_angles(const Model<double>& model) {
   return revolute;
 }
 
-/// dyngen_sincos calls for the marked q entries: one array call per run of consecutive ones,
-/// which the compiler can vectorise.
-std::string sincos_calls(const std::vector<bool>& marked, bool single_precision) {
+/// dyngen_sincos calls for the marked q entries into `trig` (the trig's name and member access,
+/// "trig." or "trig->"): one array call per run of consecutive ones, which the compiler can
+/// vectorise.
+std::string sincos_calls(const std::vector<bool>& marked, bool single_precision,
+                         const std::string& trig) {
   const char* sincos = single_precision ? "dyngen_sincosf" : "dyngen_sincos";
   const int nq = static_cast<int>(marked.size());
   std::string out;
@@ -548,11 +555,11 @@ std::string sincos_calls(const std::vector<bool>& marked, bool single_precision)
     int end = k;
     while (end < nq && marked[end]) ++end;
     if (end - k == 1)
-      out += fmt::format("    {1}(q[{0}], &trig.sin_q[{0}], &trig.cos_q[{0}]);\n", k, sincos);
+      out += fmt::format("    {1}(q[{0}], &{2}sin_q[{0}], &{2}cos_q[{0}]);\n", k, sincos, trig);
     else
       out += fmt::format(
-          "    {3}_array(q + {0}, trig.sin_q + {0}, trig.cos_q + {0}, {1});  // q[{0}..{2}]\n",
-          k, end - k, end - 1, sincos);
+          "    {3}_array(q + {0}, {4}sin_q + {0}, {4}cos_q + {0}, {1});  // q[{0}..{2}]\n", k,
+          end - k, end - 1, sincos, trig);
     k = end;
   }
   return out;
@@ -560,25 +567,38 @@ std::string sincos_calls(const std::vector<bool>& marked, bool single_precision)
 
 }  // namespace
 
-std::string emit_joint_trig(const Model<double>& model, bool single_precision) {
-  const std::string out = sincos_calls(revolute_angles(model), single_precision);
+std::string Dialect::size(const std::string& local) const {
+  if (!c()) return local;
+  std::string macro = name + "_" + local;
+  for (char& ch : macro) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return macro;
+}
+
+std::string emit_joint_trig(const Model<double>& model, bool single_precision,
+                            const Dialect& dialect) {
+  const std::string out =
+      sincos_calls(revolute_angles(model), single_precision, dialect.trig_member());
   if (out.empty())
-    return "    static_cast<void>(q);  // no revolute joint\n    static_cast<void>(trig);\n";
+    return fmt::format("    {};  // no revolute joint\n    {};\n", dialect.discard("q"),
+                       dialect.discard("trig"));
   return out;
 }
 
 std::string emit_trig_fill(const Model<double>& model, bool single_precision,
-                           const std::vector<bool>& angles) {
+                           const std::vector<bool>& angles, const Dialect& dialect) {
   if (angles == revolute_angles(model) ||
       std::find(angles.begin(), angles.end(), true) == angles.end())
-    return "    joint_trig(q, trig);\n";
+    return fmt::format("    {}(q, {}trig);\n", dialect.external("joint_trig"),
+                       dialect.c() ? "&" : "");
   std::string out = "    // the angles this function reads\n";
-  return out.append(sincos_calls(angles, single_precision));
+  return out.append(sincos_calls(angles, single_precision, "trig."));
 }
 
 template OpCounts count_ops<double>(const Program<double>&, bool);
 template OpCounts count_ops<float>(const Program<float>&, bool);
-template EmittedCode emit_code<double>(const Program<double>&, const Model<double>&, Structure);
-template EmittedCode emit_code<float>(const Program<float>&, const Model<double>&, Structure);
+template EmittedCode emit_code<double>(const Program<double>&, const Model<double>&, Structure,
+                                       const Dialect&);
+template EmittedCode emit_code<float>(const Program<float>&, const Model<double>&, Structure,
+                                      const Dialect&);
 
 }  // namespace dyngen::gen

@@ -1,10 +1,12 @@
-// Schedules a traced program and prints it as C++: live nodes in creation order (the
+// Schedules a traced program and prints it as C++ or C: live nodes in creation order (the
 // algorithm's order), one operation per statement, grouped and labelled by body and pass,
 // either in place or in functions shared by sections of the same shape.
 #pragma once
 
 #include <cstddef>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "dyngen/model.hpp"
 #include "trace.hpp"
@@ -42,6 +44,34 @@ enum class Structure { Unrolled, Shared };
 /// "Code structure").
 inline constexpr std::size_t min_shared_operations = 40;
 
+/// The language the code is printed in.
+enum class Language { Cpp, C };
+
+/// Where C and C++ spell the same program differently: C has no namespace, so the names a
+/// header declares carry the package's name as a prefix, and no references, so the trig comes
+/// by pointer. Statements, their order and so the bits are the same in both.
+struct Dialect {
+  Language language = Language::Cpp;
+  std::string name;  // the package's: C++ namespace, C prefix
+
+  bool c() const { return language == Language::C; }
+  /// A name the header declares, as code outside the namespace sees it in C: "ur5_rnea".
+  std::string external(const std::string& local) const { return c() ? name + "_" + local : local; }
+  /// "nq" in C++ (a constant of the namespace), "UR5_NQ" in C (a macro).
+  std::string size(const std::string& local) const;
+  std::string discard(const std::string& x) const {
+    return c() ? "(void)" + x : "static_cast<void>(" + x + ")";
+  }
+  const char* table() const { return c() ? "static const" : "constexpr"; }
+  const char* no_throw() const { return c() ? "" : " noexcept"; }
+  /// How a _trig function and joint_trig reach the trig they are given.
+  const char* trig_member() const { return c() ? "trig->" : "trig."; }
+  std::string trig_parameter(bool writable) const {
+    return c() ? fmt::format("{}{}_JointTrig* trig", writable ? "" : "const ", name)
+               : fmt::format("{}JointTrig& trig", writable ? "" : "const ");
+  }
+};
+
 struct EmittedCode {
   std::string helpers;  // namespace-scope definitions the body calls (the shared functions)
   std::string body;     // the function's statements and output stores, indented
@@ -51,19 +81,22 @@ struct EmittedCode {
   std::vector<bool> angles;  // by q index: whether the body reads sin or cos of that angle
 };
 
-/// The code of one traced function.
+/// The code of one traced function. C has no kernels (C++ templates): a C program must be traced
+/// with every kernel call inlined.
 template <class T>
-EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure);
+EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure,
+                      const Dialect& dialect = {});
 
 /// The body of joint_trig(q, trig): dyngen_sincos (dyngen_sincosf in single precision) of every
 /// revolute joint's angle.
-std::string emit_joint_trig(const Model<double>& model, bool single_precision);
+std::string emit_joint_trig(const Model<double>& model, bool single_precision,
+                            const Dialect& dialect = {});
 
 /// How a plain f(q, ...) fills its trig before calling f_trig: joint_trig(q, trig), or, where
 /// its body reads only some of the revolute angles (`angles`, by q index; ur5's rnea leaves out
 /// the first joint, which turns about gravity's axis), those angles alone.
 std::string emit_trig_fill(const Model<double>& model, bool single_precision,
-                           const std::vector<bool>& angles);
+                           const std::vector<bool>& angles, const Dialect& dialect = {});
 
 /// "revolute +z", "prismatic axis (0.6, 0, 0.8)"
 std::string joint_description(const Model<double>& model, int body);

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "footprint.hpp"
 #include "names.hpp"
 #include "template.hpp"
 
@@ -106,20 +107,22 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
   return fmt::format("{}\n{}", text, conditioning);
 }
 
-const char* extent_text(Extent e) {
-  return e == Extent::Nq ? "nq" : e == Extent::Nv ? "nv" : "nv * nv";
+std::string extent_text(Extent e, const Dialect& dialect) {
+  const std::string nv = dialect.size("nv");
+  return e == Extent::Nq ? dialect.size("nq") : e == Extent::Nv ? nv : nv + " * " + nv;
 }
 
-/// "void name(a, b, ...) noexcept" wrapped at 100 columns, continuation lines under the first
-/// parameter.
-std::string declaration(const std::string& name, const std::vector<std::string>& parameters) {
+/// "void name(a, b, ...) noexcept" (C: no noexcept) wrapped at 100 columns, continuation lines
+/// under the first parameter.
+std::string declaration(const std::string& name, const std::vector<std::string>& parameters,
+                        const Dialect& dialect) {
   const std::string head = fmt::format("void {}(", name);
   const std::size_t indent = head.size();
   std::string text = head;
   std::size_t column = indent;
   for (std::size_t k = 0; k < parameters.size(); ++k) {
     const std::string item =
-        fmt::format("{}{}", parameters[k], k + 1 < parameters.size() ? ", " : ") noexcept");
+        k + 1 < parameters.size() ? parameters[k] + ", " : parameters[k] + ")" + dialect.no_throw();
     if (column + item.size() > 100 && column > indent) {
       while (text.back() == ' ') text.pop_back();
       text += fmt::format("\n{:{}}", "", indent);
@@ -134,31 +137,40 @@ std::string declaration(const std::string& name, const std::vector<std::string>&
 /// The generated function's parameters: the inputs, with `trig` after q in the _trig form, then
 /// the outputs.
 std::vector<std::string> parameters(const AlgorithmSpec<double>& spec, const std::string& scalar,
-                                    bool trig) {
+                                    bool trig, const Dialect& dialect) {
   std::vector<std::string> out;
   for (const ArraySpec& a : spec.inputs) {
-    out.push_back(fmt::format("const {} {}[{}]", scalar, a.name, extent_text(a.extent)));
-    if (trig && a.name == "q") out.push_back("const JointTrig& trig");
+    out.push_back(fmt::format("const {} {}[{}]", scalar, a.name, extent_text(a.extent, dialect)));
+    if (trig && a.name == "q") out.push_back(dialect.trig_parameter(false));
   }
   for (const ArraySpec& a : spec.outputs)
-    out.push_back(fmt::format("{} {}[{}]", scalar, a.name, extent_text(a.extent)));
+    out.push_back(fmt::format("{} {}[{}]", scalar, a.name, extent_text(a.extent, dialect)));
   return out;
 }
 
-/// The header's list of the arrays that the requested functions take, each once.
-std::string array_docs(const std::vector<Algorithm>& algorithms, const std::string& free_joints) {
-  std::vector<std::string_view> seen;
-  std::string text;
+/// The header's list of the arrays that the requested functions take, each once, and how q holds
+/// the free joints' positions (`free_joints`: lines to add to q's).
+std::string array_docs(const std::vector<Algorithm>& algorithms,
+                       const std::vector<std::string>& free_joints, const Dialect& dialect) {
+  std::vector<std::pair<std::string, const ArraySpec*>> entries;
+  std::size_t width = 0;
   for (const Algorithm& name : algorithms) {
     const AlgorithmSpec<double>& spec = algorithm_spec(name);
-    std::vector<ArraySpec> arrays = spec.inputs;
-    arrays.insert(arrays.end(), spec.outputs.begin(), spec.outputs.end());
-    for (const ArraySpec& a : arrays) {
-      if (std::find(seen.begin(), seen.end(), a.name) != seen.end()) continue;
-      seen.push_back(a.name);
-      text += fmt::format("///   {:<12}{}{}\n", fmt::format("{}[{}]", a.name, extent_text(a.extent)),
-                          a.meaning, a.name == "q" ? free_joints : "");
-    }
+    for (const auto* list : {&spec.inputs, &spec.outputs})
+      for (const ArraySpec& a : *list) {
+        if (std::any_of(entries.begin(), entries.end(),
+                        [&](const auto& e) { return e.second->name == a.name; }))
+          continue;
+        entries.emplace_back(fmt::format("{}[{}]", a.name, extent_text(a.extent, dialect)), &a);
+        width = std::max(width, entries.back().first.size() + 2);
+      }
+  }
+  std::string text;
+  for (const auto& [array, a] : entries) {
+    text += fmt::format("///   {:<{}}{}\n", array, width, a->meaning);
+    if (a->name == "q")
+      for (const std::string& line : free_joints)
+        text += fmt::format("///   {:<{}}{}\n", "", width, line);
   }
   if (!text.empty()) text.pop_back();
   return text;
@@ -211,14 +223,15 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   result.conditioning_text = conditioning_text(result.conditioning, with_aba);
   result.warnings =
       precision_warnings(result.conditioning, with_aba, std::is_same_v<T, float>);
-  if (!std::is_same_v<T, float> &&
-      (options.target == Target::CortexM4F || options.target == Target::CortexM33))
+  if (!std::is_same_v<T, float> && target_single_precision(options.target))
     result.warnings.push_back(fmt::format(
         "--target {}: its FPU computes in single precision only, so double code runs in "
         "software floating point there, about 30 times the instructions of float (ur5's rnea: "
         "43,641 instructions on a Cortex-M4F against 1,401 in double on a Cortex-M7 and 1,177 in "
         "float on the M4F); generate --scalar float",
         target_names[static_cast<int>(options.target)]));
+  const Dialect dialect{options.language, ns};
+  const bool single = std::is_same_v<T, float>;
   std::string declarations, definitions, cases;
   bool calls_kernels = false;
   for (const Algorithm& a : options.algorithms) {
@@ -226,6 +239,13 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     // the runtime's count first, so that its unsimplified trace is gone before the other's
     const OpCounts runtime = count_ops(trace<T>(a, model, false), false);
     const Program<T> program = trace<T>(a, model, true);
+    // the kernels are C++ templates; unrolled into C, atlas's derivatives take GCC 400 s and 5 GB
+    if (dialect.c() && !program.graph.calls.empty())
+      throw InputError(fmt::format(
+          "{}: {} of this robot calls kernels (dyngen_kernels.hpp, for its {} degrees of freedom), "
+          "which C output does not have: generate it as C++ (--lang c++), or leave it out of the "
+          "C package (--algorithms)",
+          robot.path, a, model.nv));
     if (const int id = first_non_finite_constant(program); id >= 0) {
       const Node<T>& node = program.graph.nodes[id];
       throw InputError(fmt::format(
@@ -239,8 +259,8 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     }
     const OpCounts generated = count_ops(program);
     calls_kernels = calls_kernels || !program.graph.calls.empty();
-    const EmittedCode code = emit_code(program, model, options.structure);
-    const std::string trig_fill = emit_trig_fill(model, std::is_same_v<T, float>, code.angles);
+    const EmittedCode code = emit_code(program, model, options.structure, dialect);
+    const std::string trig_fill = emit_trig_fill(model, single, code.angles, dialect);
     result.counts.push_back({a, generated, runtime, code.sections, code.shared_sections,
                              code.shared_functions});
 
@@ -248,21 +268,25 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     std::string trig_arguments, arguments;
     for (const ArraySpec& x : spec.inputs) {
       trig_arguments += fmt::format("{}{}", trig_arguments.empty() ? "" : ", ", x.name);
-      if (x.name == "q") trig_arguments += ", trig";
+      if (x.name == "q") trig_arguments += dialect.c() ? ", &trig" : ", trig";
     }
     for (const ArraySpec& y : spec.outputs) trig_arguments += fmt::format(", {}", y.name);
     for (std::size_t k = 0; k < spec.inputs.size(); ++k)
       arguments += fmt::format("{}x[{}].data()", k == 0 ? "" : ", ", k);
     for (std::size_t k = 0; k < spec.outputs.size(); ++k)
       arguments += fmt::format(", y[{}].data()", k);
-    const std::string summary(spec.summary), call = declaration(a, parameters(spec, scalar, false)),
-        trig_call = declaration(a + "_trig", parameters(spec, scalar, true));
+    const std::string summary(spec.summary),
+        call = declaration(dialect.external(a), parameters(spec, scalar, false, dialect), dialect),
+        trig_call = declaration(dialect.external(a + "_trig"), parameters(spec, scalar, true, dialect),
+                                dialect);
     declarations += fill("function.hpp.in", {{"summary", summary},
                                              {"declaration", call},
                                              {"trig_declaration", trig_call}}) +
                     "\n";
     if (!code.helpers.empty()) definitions += "\n" + code.helpers;
-    definitions += fill("function.cpp.in", {{"name", a},
+    definitions += fill("function.cpp.in", {{"trig_name", dialect.external(a + "_trig")},
+                                            {"trig_type", dialect.external("JointTrig")},
+                                            {"joint_trig", dialect.external("joint_trig")},
                                             {"summary", summary},
                                             {"declaration", call},
                                             {"trig_declaration", trig_call},
@@ -270,70 +294,129 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                                             {"trig_fill", trig_fill},
                                             {"counts", to_string(generated)},
                                             {"body", code.body}});
-    cases += fill("function_check.cpp.in", {{"name", a}, {"namespace", ns}, {"arguments", arguments}});
+    cases += fill("function_check.cpp.in",
+                  {{"name", a},
+                   {"namespace", ns},
+                   {"call", dialect.c() ? dialect.external(a) : ns + "::" + a},
+                   {"arguments", arguments}});
   }
   if (!declarations.empty()) declarations.pop_back();
 
-  const std::string banner = banner_text(robot, options, result.counts, result.conditioning_text);
   std::string joint_names;
   const std::vector<std::string> names = velocity_names(model);
   for (std::size_t k = 0; k < names.size(); ++k)
     joint_names +=
         fmt::format("    {},{}", string_literal(names[k]), k + 1 < names.size() ? "\n" : "");
-  std::string free_joints;
+  std::vector<std::string> free_joints;
   for (int i = 0; i < model.nbodies; ++i)
-    if (model.joint_type[i] == JointType::Free)
-      free_joints += fmt::format(
-          "\n///               free joint '{}': q[{}..{}] = position of the body in its parent's "
-          "frame, then\n///               its unit quaternion w, x, y, z; v[{}..{}] = linear, "
-          "then angular\n///               velocity in the body's own frame (tau alike: force, "
-          "then moment)",
-          safe_text(model.joint_name[i]), model.q_index[i], model.q_index[i] + 6, model.v_index[i],
-          model.v_index[i] + 5);
+    if (model.joint_type[i] == JointType::Free) {
+      free_joints.push_back(fmt::format(
+          "free joint '{}': q[{}..{}] = position of the body in its parent's frame, then",
+          safe_text(model.joint_name[i]), model.q_index[i], model.q_index[i] + 6));
+      free_joints.push_back(fmt::format(
+          "its unit quaternion w, x, y, z; v[{}..{}] = linear, then angular velocity in the",
+          model.v_index[i], model.v_index[i] + 5));
+      free_joints.push_back("body's own frame (tau alike: force, then moment)");
+    }
   const Vec3<double>& g = model.gravity;
   const std::string gravity = fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z));
 
-  result.files.push_back(
-      {ns + "_dynamics.hpp",
-       fill("dynamics.hpp.in", {{"banner", commented(banner, "//")},
-                                {"robot", safe_text(robot.name)},
-                                {"scalar", scalar},
-                                {"sincos", std::is_same_v<T, float> ? "dyngen_sincosf" : "dyngen_sincos"},
-                                {"structure", options.structure == Structure::Shared
-                                                  ? "repeated link sections call shared functions"
-                                                  : "every link section in place"},
-                                {"gravity", fmt::format("({}, {}, {}) m/s^2", g.x, g.y, g.z)},
-                                {"namespace", ns},
-                                {"nq", std::to_string(model.nq)},
-                                {"nv", std::to_string(model.nv)},
-                                {"joint_names", joint_names},
-                                {"arrays", array_docs(options.algorithms, free_joints)},
-                                {"declarations", declarations}})});
-  result.files.push_back({ns + "_dynamics.cpp", fill("dynamics.cpp.in", {{"banner", commented(banner, "//")},
-                                                                        {"name", ns},
-                                                                        {"namespace", ns},
-                                                                        {"scalar", scalar},
-                                                                        {"joint_trig", emit_joint_trig(model, std::is_same_v<T, float>)},
-                                                                        {"kernels_include", calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
-                                                                        {"definitions", definitions}})});
-  // the runtime's own header, verbatim: both sides compute sin and cos with the same code
-  result.files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
-  if (calls_kernels)
-    result.files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
-  result.files.push_back({ns + "_model.hpp", fill("model.hpp.in", {{"banner", commented(banner, "//")},
-                                                                  {"namespace", ns},
-                                                                  {"records", model_records<T>(model)},
-                                                                  {"gravity", gravity}})});
-  result.files.push_back({ns + "_check.cpp", fill("check.cpp.in", {{"banner", commented(banner, "//")},
-                                                                  {"name", ns},
-                                                                  {"namespace", ns},
-                                                                  {"scalar", scalar},
-                                                                  {"random_states", "10000"},
-                                                                  {"extreme_states", "2000"},
-                                                                  {"cases", cases}})});
-  result.files.push_back({"CMakeLists.txt", fill("CMakeLists.txt.in", {{"banner", commented(banner, "#")},
-                                                                      {"name", ns},
-                                                                      {"NAME", upper(ns)}})});
+  const std::string sincos = single ? "dyngen_sincosf" : "dyngen_sincos";
+  const std::string structure = options.structure == Structure::Shared
+                                    ? "repeated link sections call shared functions"
+                                    : "every link section in place";
+  const std::string header = ns + (dialect.c() ? "_dynamics.h" : "_dynamics.hpp");
+  const std::string source = ns + (dialect.c() ? "_dynamics.c" : "_dynamics.cpp");
+  // the package's files under a banner
+  auto package = [&](const std::string& banner) {
+    std::vector<GeneratedFile> files;
+    const std::string code_banner = commented(banner, "//");
+    const std::map<std::string, std::string> header_values{
+        {"banner", code_banner},
+        {"robot", safe_text(robot.name)},
+        {"scalar", scalar},
+        {"sincos", sincos},
+        {"structure", structure},
+        {"gravity", fmt::format("({}, {}, {}) m/s^2", g.x, g.y, g.z)},
+        {"nq", std::to_string(model.nq)},
+        {"nv", std::to_string(model.nv)},
+        {"arrays", array_docs(options.algorithms, free_joints, dialect)},
+        {"declarations", declarations}};
+    if (dialect.c()) {
+      std::map<std::string, std::string> values = header_values;
+      values.insert({{"name", ns}, {"NAME", upper(ns)}});
+      files.push_back({header, fill("dynamics.h.in", values)});
+      files.push_back({source, fill("dynamics.c.in",
+                                    {{"banner", code_banner},
+                                     {"name", ns},
+                                     {"NAME", upper(ns)},
+                                     {"scalar", scalar},
+                                     {"joint_names", joint_names},
+                                     {"joint_trig", emit_joint_trig(model, single, dialect)},
+                                     {"definitions", definitions}})});
+    } else {
+      std::map<std::string, std::string> values = header_values;
+      values.insert({{"namespace", ns}, {"joint_names", joint_names}});
+      files.push_back({header, fill("dynamics.hpp.in", values)});
+      files.push_back(
+          {source,
+           fill("dynamics.cpp.in",
+                {{"banner", code_banner},
+                 {"name", ns},
+                 {"namespace", ns},
+                 {"scalar", scalar},
+                 {"joint_trig", emit_joint_trig(model, single, dialect)},
+                 {"kernels_include", calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
+                 {"definitions", definitions}})});
+    }
+    // the runtime's own header, verbatim: both sides compute sin and cos with the same code
+    files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
+    if (calls_kernels)
+      files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
+    files.push_back({ns + "_model.hpp", fill("model.hpp.in", {{"banner", code_banner},
+                                                             {"namespace", ns},
+                                                             {"records", model_records<T>(model)},
+                                                             {"gravity", gravity}})});
+    files.push_back(
+        {ns + "_check.cpp",
+         fill("check.cpp.in",
+              {{"banner", code_banner},
+               {"header", header},
+               {"name", ns},
+               {"namespace", ns},
+               {"nq", dialect.c() ? dialect.size("nq") : ns + "::nq"},
+               {"nv", dialect.c() ? dialect.size("nv") : ns + "::nv"},
+               {"joint_names", dialect.c() ? dialect.external("joint_names") : ns + "::joint_names"},
+               {"scalar", scalar},
+               {"random_states", "10000"},
+               {"extreme_states", "2000"},
+               {"cases", cases}})});
+    files.push_back(
+        {"CMakeLists.txt",
+         fill("CMakeLists.txt.in",
+              {{"banner", commented(banner, "#")},
+               {"name", ns},
+               {"NAME", upper(ns)},
+               {"standard", dialect.c() ? "C99" : "C++17"},
+               {"standard_name", dialect.c() ? "C" : "C++"},
+               {"language", dialect.c() ? "C" : "CXX"},
+               {"extension", dialect.c() ? "c" : "cpp"},
+               {"feature", dialect.c() ? "c_std_99" : "cxx_std_17"},
+               {"language_flags", dialect.c() ? "" : " -fno-exceptions -fno-rtti"},
+               {"enable_check_language",
+                dialect.c() ? "  enable_language(CXX)  # the check is C++ (GoogleTest)\n" : ""}})});
+    return files;
+  };
+  std::string banner = banner_text(robot, options, result.counts, result.conditioning_text);
+  if (options.measure) {
+    step("compiling the code to measure its size and stack");
+    const Toolchain tools = toolchain(target_names[static_cast<int>(options.target)],
+                                      !single && target_single_precision(options.target));
+    result.footprint = measure_footprint(package(banner), source, options.algorithms,
+                                         dialect.c() ? ns + "_" : ns + "::", tools);
+    banner.append("\n").append(footprint_text(*result.footprint));  // GCC 12 -Wrestrict misfires on "\n" + s
+  }
+  result.files = package(banner);
   return result;
 }
 

@@ -2,11 +2,13 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "dyngen/numerics/conditioning.hpp"
 #include "emit.hpp"
+#include "footprint.hpp"
 #include "names.hpp"
 #include "output.hpp"
 #include "robot.hpp"
@@ -22,12 +24,19 @@ enum class Target { Host, CortexM4F, CortexM7, CortexM33 };
 /// --target's names, in Target's order.
 inline constexpr const char* target_names[] = {"host", "cortex-m4f", "cortex-m7", "cortex-m33"};
 
+/// Whether the target's FPU computes in single precision only (double runs in software).
+inline bool target_single_precision(Target t) {
+  return t == Target::CortexM4F || t == Target::CortexM33;
+}
+
 struct GenerateOptions {
-  std::string name;                     // file prefix and C++ namespace
+  std::string name;                     // file prefix and C++ namespace or C name prefix
+  Language language = Language::Cpp;
   std::vector<Algorithm> algorithms{"rnea", "crba", "aba"};
   bool single_precision = false;        // float instead of double
   Structure structure = Structure::Shared;
   Target target = Target::Host;
+  bool measure = false;                 // compile for the target and record code and stack
   std::string options_text;             // the options as given, for the banner
   int conditioning_samples = 16;        // sampled states of the conditioning estimate
   std::function<void(const std::string&)> progress;  // told of each step as it starts, if set
@@ -56,6 +65,7 @@ struct Generated {
   numerics::Conditioning conditioning;
   std::string conditioning_text;      // as the banner records it
   std::vector<std::string> warnings;  // digits the generated scalar is expected to lose
+  std::optional<Footprint> footprint;  // when measured
 };
 
 /// Correct decimal digits below which dyngen warns that the generated scalar is not enough

@@ -281,7 +281,7 @@ int main(int argc, char** argv) {
                "(dyngen report --help)"};
   app.name("dyngen");
   std::string input, output, algorithms = "rnea,crba,aba", scalar = "double", name,
-      structure = "shared", target = "host";
+      structure = "shared", target = "host", lang = "c++";
   ModelFlags flags;
   bool quiet = false, force = false;
   app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
@@ -292,7 +292,13 @@ int main(int argc, char** argv) {
   app.add_option("--scalar", scalar, "scalar type of the generated code")
       ->check(CLI::IsMember({"double", "float"}))
       ->capture_default_str();
-  app.add_option("--name", name, "C++ namespace and file prefix (default: the robot's name)");
+  app.add_option("--name", name,
+                 "file prefix, and C++ namespace or C name prefix (default: the robot's name)");
+  app.add_option("--lang", lang,
+                 "language of the code: c++ (C++17, in a namespace) or c (C99, every name "
+                 "prefixed, a header usable from C and C++); the same functions and bits")
+      ->check(CLI::IsMember({"c++", "c"}))
+      ->capture_default_str();
   app.add_option("--structure", structure,
                  "shared: sections of links whose code differs only in constants share one "
                  "function over a table of them (smaller code, the same operations and bits); "
@@ -305,6 +311,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(target_names),
                                                      std::end(target_names))))
       ->capture_default_str();
+  bool measure = false;
+  app.add_flag("--measure,!--no-measure", measure,
+               "compile the code with the target's GCC (the host's cc/c++, or arm-none-eabi-gcc) "
+               "and record in the banner each function's code bytes and stack bound (default: "
+               "on for a Cortex-M target, off for the host)");
   flags.add_to(app);
   app.add_flag("--force", force,
                "write into DIR even when it holds files dyngen did not write (files of the same "
@@ -320,13 +331,16 @@ int main(int argc, char** argv) {
     options.algorithms = parse_algorithms(algorithms, algorithm_names());
     options.single_precision = scalar == "float";
     options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
+    options.language = lang == "c" ? Language::C : Language::Cpp;
+    options.measure = app.count("--measure") + app.count("--no-measure") > 0 ? measure
+                                                                             : target != "host";
     options.target = static_cast<Target>(
         std::find(std::begin(target_names), std::end(target_names), target) -
         std::begin(target_names));
 
     if (!name.empty() && !is_identifier(name))
       throw InputError(fmt::format(
-          "--name {}: not usable as a C++ namespace and file prefix (it must be letters, digits "
+          "--name {}: not usable as a C++ namespace, C prefix and file prefix (it must be letters, digits "
           "and single underscores, start with a letter, have at most {} characters, and not be a "
           "C or C++ keyword or a name the C library declares); for example --name {}",
           name, max_identifier, identifier(name)));
@@ -339,9 +353,9 @@ int main(int argc, char** argv) {
     const std::string algorithm_list = comma_list(options.algorithms);
     const Vec3<double>& g = robot.model.gravity;
     options.options_text =
-        fmt::format("--algorithms {} --scalar {} --structure {} --target {} --gravity {},{},{} "
-                    "--name {}",
-                    algorithm_list, scalar, structure, target, g.x, g.y, g.z, options.name);
+        fmt::format("--algorithms {} --scalar {} --lang {} --structure {} --target {} "
+                    "--gravity {},{},{} --name {}",
+                    algorithm_list, scalar, lang, structure, target, g.x, g.y, g.z, options.name);
     options.options_text += flags.text();
 
     if (!quiet) {
@@ -369,6 +383,7 @@ int main(int argc, char** argv) {
                    to_string(c.generated));
       if (robot.snapped) fmt::print("{}\n", snap_text(*robot.snapped));
       fmt::print("{}\n", generated.conditioning_text);
+      if (generated.footprint) fmt::print("{}\n", footprint_text(*generated.footprint));
       fmt::print("wrote {} files to {}:", generated.files.size(), output);
       for (const GeneratedFile& f : generated.files) fmt::print(" {}", f.name);
       fmt::print("\nbuild and check it against the runtime:\n"

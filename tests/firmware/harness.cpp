@@ -1,8 +1,10 @@
 // Runs a generated package's rnea, crba and aba on a fixed set of states and prints every
 // output's bits in hex, one line per call: built for a Cortex-M (under qemu, with semihosting)
 // and for the host, and the two printouts must be equal. The states come from integer
-// arithmetic scaled by powers of two, so both builds read the same numbers. DYNGEN_HEADER and
-// DYNGEN_NAMESPACE name the package; SCALAR is its scalar. No library beyond the package.
+// arithmetic scaled by powers of two, so both builds read the same numbers. DYNGEN_HEADER names
+// the package's header and DYNGEN_NAMESPACE its namespace, or for a C package (--lang c)
+// DYNGEN_PREFIX its prefix and DYNGEN_NQ, DYNGEN_NV its size macros; SCALAR is its scalar. No
+// library beyond the package.
 //
 // On the Cortex-M it also measures each function's stack: the 64 KiB below the stack pointer
 // are painted before each call and searched for the deepest word it overwrote; the most over
@@ -13,7 +15,15 @@
 
 namespace {
 
-namespace robot = DYNGEN_NAMESPACE;
+#if defined(DYNGEN_PREFIX)
+#define DYNGEN_GLUE(prefix, name) prefix##_##name
+#define DYNGEN_NAME(prefix, name) DYNGEN_GLUE(prefix, name)
+#define FUNCTION(name) DYNGEN_NAME(DYNGEN_PREFIX, name)
+constexpr int nq = DYNGEN_NQ, nv = DYNGEN_NV;
+#else
+#define FUNCTION(name) DYNGEN_NAMESPACE::name
+constexpr int nq = DYNGEN_NAMESPACE::nq, nv = DYNGEN_NAMESPACE::nv;
+#endif
 
 unsigned state = 2463534242u;  // xorshift32
 
@@ -63,21 +73,20 @@ void print(const char* name, int index, const SCALAR* values, int count) {
 }  // namespace
 
 int main() {
-  static_assert(robot::nq == robot::nv, "the harness takes robots without free joints");
+  static_assert(nq == nv, "the harness takes robots without free joints");
   for (int s = 0; s < 8; ++s) {
-    SCALAR q[robot::nq], v[robot::nv], a[robot::nv], tau[robot::nv], out[robot::nv],
-        M[robot::nv * robot::nv];
+    SCALAR q[nq], v[nv], a[nv], tau[nv], out[nv], M[nv * nv];
     // angles up to 4 (and, in the last state, up to 512: the large-argument path of sin and cos)
     for (SCALAR& x : q) x = next(s == 7 ? 9 : 2);
     for (SCALAR& x : v) x = next(1);
     for (SCALAR& x : a) x = next(2);
     for (SCALAR& x : tau) x = next(4);
-    MEASURED(robot::rnea(q, v, a, out), stack_rnea);
-    print("rnea", s, out, robot::nv);
-    MEASURED(robot::crba(q, M), stack_crba);
-    print("crba", s, M, robot::nv * robot::nv);
-    MEASURED(robot::aba(q, v, tau, out), stack_aba);
-    print("aba", s, out, robot::nv);
+    MEASURED(FUNCTION(rnea)(q, v, a, out), stack_rnea);
+    print("rnea", s, out, nv);
+    MEASURED(FUNCTION(crba)(q, M), stack_crba);
+    print("crba", s, M, nv * nv);
+    MEASURED(FUNCTION(aba)(q, v, tau, out), stack_aba);
+    print("aba", s, out, nv);
   }
 #if defined(__arm__)
   firmware::print_count("stack rnea ", stack_rnea);

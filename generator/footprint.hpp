@@ -1,0 +1,50 @@
+// What a package costs on its processor before it is flashed: each function's code bytes and an
+// upper bound of its stack, from compiling the package with the target's GCC (-fstack-usage's
+// frames on -fcallgraph-info's call graph).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "output.hpp"
+
+namespace dyngen::gen {
+
+/// How a package is compiled for one processor: GCC (the only compiler with -fcallgraph-info),
+/// its flags, and nm.
+struct Toolchain {
+  std::string c, cxx, nm;            // compiler for C, for C++, and nm
+  std::vector<std::string> flags;    // processor flags, both languages
+  int soft_double_allowance = 0;     // stack bytes that software double routines may add
+};
+
+/// host: cc, c++ and nm (or $CC, $CXX); a Cortex-M: arm-none-eabi-gcc with its -mcpu, -mfpu and
+/// -mfloat-abi. double_in_software: the scalar is double and the FPU has single precision only.
+Toolchain toolchain(const std::string& target, bool double_in_software);
+
+struct FunctionFootprint {
+  std::string algorithm;
+  long code_bytes = 0;                   // f, f_trig, their shared functions and tables
+  std::optional<long> stack_bound;       // f(q, ...): its deepest call chain, empty if unbounded
+  std::optional<long> trig_stack_bound;  // f_trig(q, trig, ...)
+};
+
+struct Footprint {
+  std::string compiler;             // "arm-none-eabi-gcc 12.2.1 -O2 -mcpu=cortex-m4 ..."
+  std::vector<FunctionFootprint> functions;
+  long common_code_bytes = 0;       // joint_trig, sin and cos, kernels: shared by the functions
+};
+
+/// Compiles `source` (a package's _dynamics.c or .cpp, among `files`) with the toolchain at -O2
+/// in a scratch directory, and measures each of `algorithms`. `prefix` is how the package names
+/// them ("ur5::" in C++, "ur5_" in C). Throws InputError when the compiler is missing or fails.
+Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::string& source,
+                            const std::vector<std::string>& algorithms, const std::string& prefix,
+                            const Toolchain& toolchain);
+
+/// The footprint as the banner records it.
+std::string footprint_text(const Footprint& footprint);
+
+}  // namespace dyngen::gen
