@@ -57,11 +57,13 @@ struct CallGraph {
 };
 
 /// GCC's -fcallgraph-info=su file: a VCG graph whose nodes are the functions, labelled with
-/// their name, place and frame ("N bytes (static)"), and whose edges are the calls.
-CallGraph read_call_graph(const fs::path& path) {
+/// their name, place and frame ("N bytes (static)"), and whose edges are the calls. Routines of
+/// the compiler's library (software double) are labelled "<built-in>": they get `builtin_frame`
+/// (none: unbounded).
+CallGraph read_call_graph(const fs::path& path, std::optional<long> builtin_frame) {
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("the compiler wrote no call graph {}", path.string()));
-  static const std::regex node(R"re(^node: \{ title: "([^"]*)" label: "([^"]*)" \})re");
+  static const std::regex node(R"re(^node: \{ title: "([^"]*)" label: "([^"]*)")re");
   static const std::regex edge(R"re(^edge: \{ sourcename: "([^"]*)" targetname: "([^"]*)")re");
   static const std::regex frame(R"re(\\n([0-9]+) bytes \((static|dynamic,bounded)\))re");
   CallGraph graph;
@@ -72,9 +74,12 @@ CallGraph read_call_graph(const fs::path& path) {
       const std::string title = m[1], label = m[2];
       graph.name[title] = function_name(label.substr(0, label.find("\\n")));
       std::smatch f;
-      graph.frame[title] = std::regex_search(label, f, frame)
-                               ? std::optional<long>(std::stol(f[1]))
-                               : std::nullopt;  // dynamic, or a function defined elsewhere
+      if (label.ends_with("\\n<built-in>"))
+        graph.frame[title] = builtin_frame;
+      else if (std::regex_search(label, f, frame))
+        graph.frame[title] = std::stol(f[1]);
+      else
+        graph.frame[title] = std::nullopt;  // dynamic, or a function defined elsewhere
     } else if (std::regex_search(line, m, edge)) {
       graph.callees[m[1]].push_back(m[2]);
     }
@@ -104,7 +109,7 @@ std::optional<long> deepest(const CallGraph& graph, const std::string& title,
 
 }  // namespace
 
-Toolchain toolchain(const std::string& target, bool double_in_software) {
+Toolchain toolchain(const std::string& target) {
   Toolchain t;
   if (target == "host") {
     const char* cc = std::getenv("CC");
@@ -126,9 +131,9 @@ Toolchain toolchain(const std::string& target, bool double_in_software) {
   else
     throw std::invalid_argument("no toolchain for target " + target);
   t.flags.push_back("-ffreestanding");
-  // libgcc's software double (ieee754-df.S) pushes at most 16 bytes and calls nothing; the
-  // bound allows twice that
-  if (double_in_software) t.soft_double_allowance = 32;
+  // libgcc's software double for Thumb-2 (ieee754-df.S) pushes at most 16 bytes and calls
+  // nothing; the bound allows twice that
+  t.libgcc_frame = 32;
   return t;
 }
 
@@ -193,7 +198,7 @@ Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::
     else code[algorithms[owner]] += bytes;
   }
 
-  const CallGraph graph = read_call_graph(dir / "package.ci");
+  const CallGraph graph = read_call_graph(dir / "package.ci", toolchain.libgcc_frame);
   std::map<std::string, std::string> title_of;
   for (const auto& [title, name] : graph.name) title_of[name] = title;
   std::map<std::string, std::optional<long>> memo;
@@ -202,8 +207,7 @@ Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::
     if (it == title_of.end())
       throw std::logic_error("internal error: no " + prefix + function + " in the call graph");
     std::set<std::string> open;
-    const std::optional<long> d = deepest(graph, it->second, memo, open);
-    return d ? std::optional<long>(*d + toolchain.soft_double_allowance) : std::nullopt;
+    return deepest(graph, it->second, memo, open);
   };
   for (const std::string& a : algorithms)
     footprint.functions.push_back({a, code[a], bound(a), bound(a + "_trig")});

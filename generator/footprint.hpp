@@ -17,12 +17,12 @@ namespace dyngen::gen {
 struct Toolchain {
   std::string c, cxx, nm;            // compiler for C, for C++, and nm
   std::vector<std::string> flags;    // processor flags, both languages
-  int soft_double_allowance = 0;     // stack bytes that software double routines may add
+  std::optional<long> libgcc_frame;  // the stack of a compiler library routine (software double)
 };
 
-/// host: cc, c++ and nm (or $CC, $CXX); a Cortex-M: arm-none-eabi-gcc with its -mcpu, -mfpu and
-/// -mfloat-abi. double_in_software: the scalar is double and the FPU has single precision only.
-Toolchain toolchain(const std::string& target, bool double_in_software);
+/// host: cc, c++ and nm (or $CC, $CXX), no library routine expected; a Cortex-M:
+/// arm-none-eabi-gcc with its -mcpu, -mfpu and -mfloat-abi.
+Toolchain toolchain(const std::string& target);
 
 struct FunctionFootprint {
   std::string algorithm;

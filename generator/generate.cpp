@@ -410,8 +410,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   std::string banner = banner_text(robot, options, result.counts, result.conditioning_text);
   if (options.measure) {
     step("compiling the code to measure its size and stack");
-    const Toolchain tools = toolchain(target_names[static_cast<int>(options.target)],
-                                      !single && target_single_precision(options.target));
+    const Toolchain tools = toolchain(target_names[static_cast<int>(options.target)]);
     result.footprint = measure_footprint(package(banner), source, options.algorithms,
                                          dialect.c() ? ns + "_" : ns + "::", tools);
     banner.append("\n").append(footprint_text(*result.footprint));  // GCC 12 -Wrestrict misfires on "\n" + s

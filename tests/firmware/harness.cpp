@@ -3,8 +3,9 @@
 // and for the host, and the two printouts must be equal. The states come from integer
 // arithmetic scaled by powers of two, so both builds read the same numbers. DYNGEN_HEADER names
 // the package's header and DYNGEN_NAMESPACE its namespace, or for a C package (--lang c)
-// DYNGEN_PREFIX its prefix and DYNGEN_NQ, DYNGEN_NV its size macros; SCALAR is its scalar. No
-// library beyond the package.
+// DYNGEN_PREFIX its prefix and DYNGEN_NQ, DYNGEN_NV its size macros; SCALAR is its scalar; for
+// a robot on a free joint, FREE_JOINT_Q is the index in q where its position starts. No library
+// beyond the package.
 //
 // On the Cortex-M it also measures each function's stack: the 64 KiB below the stack pointer
 // are painted before each call and searched for the deepest word it overwrote; the most over
@@ -73,11 +74,17 @@ void print(const char* name, int index, const SCALAR* values, int count) {
 }  // namespace
 
 int main() {
-  static_assert(nq == nv, "the harness takes robots without free joints");
   for (int s = 0; s < 8; ++s) {
     SCALAR q[nq], v[nv], a[nv], tau[nv], out[nv], M[nv * nv];
     // angles up to 4 (and, in the last state, up to 512: the large-argument path of sin and cos)
     for (SCALAR& x : q) x = next(s == 7 ? 9 : 2);
+#if defined(FREE_JOINT_Q)
+    // a unit quaternion, exactly: (+-1/2, +-1/2, +-1/2, +-1/2)
+    const SCALAR half = static_cast<SCALAR>(0.5);
+    for (int k = 0; k < 4; ++k) q[FREE_JOINT_Q + 3 + k] = next(0) < 0 ? -half : half;
+#else
+    static_assert(nq == nv, "a robot on a free joint needs FREE_JOINT_Q");
+#endif
     for (SCALAR& x : v) x = next(1);
     for (SCALAR& x : a) x = next(2);
     for (SCALAR& x : tau) x = next(4);

@@ -101,7 +101,8 @@ TEST_F(ConditioningCli, WarnsOfDoubleOnASinglePrecisionFpu) {
         std::tuple{"float", "cortex-m4f", false}, std::tuple{"double", "cortex-m7", false},
         std::tuple{"double", "host", false}}) {
     const CliResult r = run_dyngen({urdf, "-o", (dir / target).string(), "--scalar", scalar,
-                                    "--target", target, "--algorithms", "rnea"},
+                                    "--target", target, "--algorithms", "rnea",
+                                    "--no-measure"},
                                    dir);
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err.find(warning) != std::string::npos, warns) << scalar << " " << target;
