@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "process.hpp"
 #include "robot.hpp"
 
 namespace dyngen::gen {
@@ -20,26 +21,6 @@ namespace dyngen::gen {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (const char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return out + "'";
-}
-
-/// The standard output of a shell command; InputError with its output when it fails.
-std::string output_of(const std::string& command, const std::string& what) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) throw InputError(fmt::format("{}: cannot start '{}'", what, command));
-  std::string out;
-  char buffer[4096];
-  while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  if (const int status = pclose(pipe); status != 0) {
-    if (out.size() > 3000) out = "..." + out.substr(out.size() - 3000);
-    throw InputError(fmt::format("{} failed (exit status {}): {}\n{}", what, status, command, out));
-  }
-  return out;
-}
 
 /// The function a call graph label or an nm line names: "ur5::rnea" of
 /// "void ur5::rnea(const double*, double*)", "dyngen_sc_bits_at" of "dyngen_sc_bits_at.constprop".
@@ -137,6 +118,13 @@ Toolchain toolchain(const std::string& target) {
   return t;
 }
 
+std::vector<std::string> compile_flags(const Toolchain& toolchain, bool c) {
+  std::vector<std::string> flags = toolchain.flags;
+  flags.insert(flags.end(), {"-O2", "-ffp-contract=off", "-fno-fast-math"});
+  if (!c) flags.insert(flags.end(), {"-fno-exceptions", "-fno-rtti"});
+  return flags;
+}
+
 Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::string& source,
                             const std::vector<std::string>& algorithms, const std::string& prefix,
                             const Toolchain& toolchain) {
@@ -156,19 +144,17 @@ Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::
   for (const GeneratedFile& f : files) write_file(dir / f.name, f.text);
 
   const std::string version =
-      output_of(fmt::format("{} -dumpfullversion", quoted(compiler)),
+      output_of(fmt::format("{} -dumpfullversion", shell_quoted(compiler)),
                 fmt::format("measuring the code needs {} (GCC)", compiler));
-  std::vector<std::string> flags = toolchain.flags;
-  flags.insert(flags.end(), {"-O2", "-ffp-contract=off", "-fno-fast-math"});
-  if (!c) flags.insert(flags.end(), {"-fno-exceptions", "-fno-rtti"});
-  std::string command = quoted(compiler);
+  const std::vector<std::string> flags = compile_flags(toolchain, c);
+  std::string command = shell_quoted(compiler);
   for (const std::string& f : flags) command += " " + f;
   const fs::path object = dir / "package.o";
   // without identical code folding, each function keeps its own code and call graph node (GCC
   // would otherwise make aba_derivatives_shape_0 an alias of an identical aba_shape_0)
   output_of(fmt::format("{} {} -fno-ipa-icf -fstack-usage -fcallgraph-info=su -c {} -o {}", command,
-                        c ? "-std=c99" : "-std=c++17", quoted((dir / source).string()),
-                        quoted(object.string())),
+                        c ? "-std=c99" : "-std=c++17", shell_quoted((dir / source).string()),
+                        shell_quoted(object.string())),
             "compiling the package to measure it");
 
   Footprint footprint;
@@ -177,7 +163,7 @@ Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::
 
   // code bytes by symbol: what belongs to one algorithm, and what they share
   const std::string symbols =
-      output_of(fmt::format("{} -S -C --defined-only {}", quoted(toolchain.nm), quoted(object.string())),
+      output_of(fmt::format("{} -S -C --defined-only {}", shell_quoted(toolchain.nm), shell_quoted(object.string())),
                 "reading the measured package's symbols");
   std::map<std::string, long> code;
   std::istringstream lines(symbols);

@@ -24,6 +24,11 @@ struct Toolchain {
 /// arm-none-eabi-gcc with its -mcpu, -mfpu and -mfloat-abi.
 Toolchain toolchain(const std::string& target);
 
+/// The flags a package is compiled with for the toolchain's processor: its processor flags, -O2
+/// and the floating-point semantics of the bit-for-bit contract; for C++ (c false) no exceptions
+/// and no RTTI.
+std::vector<std::string> compile_flags(const Toolchain& toolchain, bool c);
+
 struct FunctionFootprint {
   std::string algorithm;
   long code_bytes = 0;                   // f, f_trig, their shared functions and tables

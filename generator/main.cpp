@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "eval.hpp"
+#include "firmware_report.hpp"
 #include "generate.hpp"
 #include "report.hpp"
 
@@ -168,6 +169,81 @@ struct ModelFlags {
   }
 };
 
+/// The options that choose the code, shared by generation and firmware-report.
+struct CodeFlags {
+  std::string algorithms = "rnea,crba,aba", scalar = "double", name, structure = "shared",
+              target = "host", lang = "c++";
+
+  void add_to(CLI::App& app, bool firmware) {
+    app.add_option("--algorithms", algorithms,
+                   "comma-separated subset of " + comma_list(algorithm_names()) + ", or all")
+        ->capture_default_str();
+    app.add_option("--scalar", scalar, "scalar type of the generated code")
+        ->check(CLI::IsMember({"double", "float"}))
+        ->capture_default_str();
+    app.add_option("--name", name,
+                   "file prefix, and C++ namespace or C name prefix (default: the robot's name)");
+    app.add_option("--lang", lang,
+                   "language of the code: c++ (C++17, in a namespace) or c (C99, every name "
+                   "prefixed, a header usable from C and C++); the same functions and bits")
+        ->check(CLI::IsMember({"c++", "c"}))
+        ->capture_default_str();
+    app.add_option("--structure", structure,
+                   "shared: sections of links whose code differs only in constants share one "
+                   "function over a table of them (smaller code, the same operations and bits); "
+                   "unrolled: every link's code in place")
+        ->check(CLI::IsMember({"unrolled", "shared"}))
+        ->capture_default_str();
+    if (firmware) {
+      target = "cortex-m4f";
+      app.add_option("--target", target, "the microcontroller, emulated by qemu")
+          ->check(CLI::IsMember(std::vector<std::string>(std::begin(firmware_report_targets),
+                                                         std::end(firmware_report_targets))))
+          ->capture_default_str();
+    } else {
+      app.add_option("--target", target,
+                     "the processor the code is for: dyngen warns where the scalar has no "
+                     "hardware there (double on a Cortex-M4F or M33, whose FPU is "
+                     "single-precision)")
+          ->check(CLI::IsMember(std::vector<std::string>(std::begin(target_names),
+                                                         std::end(target_names))))
+          ->capture_default_str();
+    }
+  }
+
+  /// Checks --name before the robot is read (so that a mistake costs no time).
+  void check_name() const {
+    if (!name.empty() && !is_identifier(name))
+      throw InputError(fmt::format(
+          "--name {}: not usable as a C++ namespace, C prefix and file prefix (it must be "
+          "letters, digits and single underscores, start with a letter, have at most {} "
+          "characters, and not be a C or C++ keyword or a name the C library declares); for "
+          "example --name {}",
+          name, max_identifier, identifier(name)));
+  }
+
+  GenerateOptions options(const Robot& robot, const ModelFlags& model) const {
+    GenerateOptions options;
+    options.algorithms = parse_algorithms(algorithms, algorithm_names());
+    options.single_precision = scalar == "float";
+    options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
+    options.language = lang == "c" ? Language::C : Language::Cpp;
+    options.target = static_cast<Target>(
+        std::find(std::begin(target_names), std::end(target_names), target) -
+        std::begin(target_names));
+    options.measure = options.target != Target::Host;
+    options.name = identifier(name.empty() ? robot.name : name);
+    const Vec3<double>& g = robot.model.gravity;
+    options.options_text =
+        fmt::format("--algorithms {} --scalar {} --lang {} --structure {} --target {} "
+                    "--gravity {},{},{} --name {}",
+                    comma_list(options.algorithms), scalar, lang, structure, target, g.x, g.y,
+                    g.z, options.name) +
+        model.text();
+    return options;
+  }
+};
+
 /// Runs a command's work, with its message on stderr after `command: error:`: bad input
 /// (InputError) and files that cannot be read or written (FileError, or the file system's own
 /// error) exit with 1, a failure of dyngen itself with 2.
@@ -268,49 +344,73 @@ int report_main(int argc, char** argv) {
   });
 }
 
+/// dyngen firmware-report ROBOT -o DIR: the package on an emulated Cortex-M, measured.
+int firmware_report_main(int argc, char** argv) {
+  CLI::App app{"dyngen firmware-report: generates the package for a Cortex-M, cross-compiles it "
+               "with a harness, runs it under qemu and on the host, and writes "
+               "firmware-report.md and .json: per function its code bytes, stack bound and "
+               "measured stack, instructions per call, and whether its outputs equal the host's "
+               "bit for bit. Needs gcc-arm-none-eabi and qemu-system-arm."};
+  app.name("dyngen firmware-report");
+  std::string input, output;
+  CodeFlags code;
+  code.scalar = "float";
+  ModelFlags flags;
+  FirmwareReportOptions options;
+  app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
+  app.add_option("-o,--output", output,
+                 "output directory (created if missing): the report, package/ and build/")
+      ->required();
+  code.add_to(app, true);
+  app.add_option("--states", options.states, "states each function runs on")
+      ->check(number_in(1, 9, true))
+      ->capture_default_str();
+  flags.add_to(app);
+  app.add_flag("--force", options.force,
+               "write into DIR even when it holds files that dyngen firmware-report did not "
+               "write (its report files, package/ and build/ are replaced, the rest kept)");
+  app.add_flag("-q,--quiet", options.quiet, "print errors and warnings only");
+  if (const auto status = parse_command_line(app, argc, argv)) return *status;
+  int status = 0;
+  const int error = run_reporting_errors("dyngen firmware-report", [&] {
+    code.check_name();
+    options.command = "dyngen firmware-report";
+    for (int k = 1; k < argc; ++k) options.command += " " + std::string(argv[k]);
+    if (!options.quiet) fmt::print("dyngen {} firmware-report: reading {}\n", version, input);
+    const Robot robot = load_robot(input, flags.load_options());
+    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    options.generate = code.options(robot, flags);
+    const std::vector<std::string> failed = make_firmware_report(robot, options, output);
+    for (const std::string& f : failed)
+      fmt::print(stderr, "dyngen firmware-report: check failed: {}\n", safe_text(f, true));
+    status = failed.empty() ? 0 : 3;
+  });
+  return error != 0 ? error : status;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string_view(argv[1]) == "eval") return eval_main(argc - 1, argv + 1);
   if (argc > 1 && std::string_view(argv[1]) == "report") return report_main(argc - 1, argv + 1);
+  if (argc > 1 && std::string_view(argv[1]) == "firmware-report")
+    return firmware_report_main(argc - 1, argv + 1);
   CLI::App app{"dyngen: generates unrolled, allocation-free C++ for the inverse dynamics (RNEA), "
                "mass matrix (CRBA) and forward dynamics (ABA) of one robot.\n"
                "dyngen eval ROBOT --states FILE: the runtime's results at given states, as JSON "
                "(dyngen eval --help)\n"
                "dyngen report ROBOT -o DIR: error against run time of every variant "
-               "(dyngen report --help)"};
+               "(dyngen report --help)\n"
+               "dyngen firmware-report ROBOT -o DIR: code, stack and instructions on an emulated "
+               "Cortex-M, checked against the host (dyngen firmware-report --help)"};
   app.name("dyngen");
-  std::string input, output, algorithms = "rnea,crba,aba", scalar = "double", name,
-      structure = "shared", target = "host", lang = "c++";
+  std::string input, output;
+  CodeFlags code;
   ModelFlags flags;
   bool quiet = false, force = false;
   app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
   app.add_option("-o,--output", output, "output directory (created if missing)")->required();
-  app.add_option("--algorithms", algorithms,
-                 "comma-separated subset of " + comma_list(algorithm_names()) + ", or all")
-      ->capture_default_str();
-  app.add_option("--scalar", scalar, "scalar type of the generated code")
-      ->check(CLI::IsMember({"double", "float"}))
-      ->capture_default_str();
-  app.add_option("--name", name,
-                 "file prefix, and C++ namespace or C name prefix (default: the robot's name)");
-  app.add_option("--lang", lang,
-                 "language of the code: c++ (C++17, in a namespace) or c (C99, every name "
-                 "prefixed, a header usable from C and C++); the same functions and bits")
-      ->check(CLI::IsMember({"c++", "c"}))
-      ->capture_default_str();
-  app.add_option("--structure", structure,
-                 "shared: sections of links whose code differs only in constants share one "
-                 "function over a table of them (smaller code, the same operations and bits); "
-                 "unrolled: every link's code in place")
-      ->check(CLI::IsMember({"unrolled", "shared"}))
-      ->capture_default_str();
-  app.add_option("--target", target,
-                 "the processor the code is for: dyngen warns where the scalar has no hardware "
-                 "there (double on a Cortex-M4F or M33, whose FPU is single-precision)")
-      ->check(CLI::IsMember(std::vector<std::string>(std::begin(target_names),
-                                                     std::end(target_names))))
-      ->capture_default_str();
+  code.add_to(app, false);
   bool measure = false;
   app.add_flag("--measure,!--no-measure", measure,
                "compile the code with the target's GCC (the host's cc/c++, or arm-none-eabi-gcc) "
@@ -326,37 +426,13 @@ int main(int argc, char** argv) {
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
 
   return run_reporting_errors("dyngen", [&] {
-    const LoadOptions load = flags.load_options();
-    GenerateOptions options;
-    options.algorithms = parse_algorithms(algorithms, algorithm_names());
-    options.single_precision = scalar == "float";
-    options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
-    options.language = lang == "c" ? Language::C : Language::Cpp;
-    options.measure = app.count("--measure") + app.count("--no-measure") > 0 ? measure
-                                                                             : target != "host";
-    options.target = static_cast<Target>(
-        std::find(std::begin(target_names), std::end(target_names), target) -
-        std::begin(target_names));
-
-    if (!name.empty() && !is_identifier(name))
-      throw InputError(fmt::format(
-          "--name {}: not usable as a C++ namespace, C prefix and file prefix (it must be letters, digits "
-          "and single underscores, start with a letter, have at most {} characters, and not be a "
-          "C or C++ keyword or a name the C library declares); for example --name {}",
-          name, max_identifier, identifier(name)));
+    code.check_name();
     check_output_dir(output, force);
     if (!quiet) fmt::print("dyngen {}: reading {}\n", version, input);
-    const Robot robot = load_robot(input, load);
+    const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
-    options.name = identifier(name.empty() ? robot.name : name);
-
-    const std::string algorithm_list = comma_list(options.algorithms);
-    const Vec3<double>& g = robot.model.gravity;
-    options.options_text =
-        fmt::format("--algorithms {} --scalar {} --lang {} --structure {} --target {} "
-                    "--gravity {},{},{} --name {}",
-                    algorithm_list, scalar, lang, structure, target, g.x, g.y, g.z, options.name);
-    options.options_text += flags.text();
+    GenerateOptions options = code.options(robot, flags);
+    if (app.count("--measure") + app.count("--no-measure") > 0) options.measure = measure;
 
     if (!quiet) {
       fmt::print("robot '{}': {} degrees of freedom in {} bodies", safe_text(robot.name),

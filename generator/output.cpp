@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -231,6 +232,21 @@ void write_package(const std::string& dir, const std::vector<GeneratedFile>& fil
     case Write::ReplaceWhole: return replace_whole(target, dir, files);
     case Write::Into: return write_into(target, files);
   }
+}
+
+bool holds_only(const fs::path& dir, const std::vector<std::string>& files,
+                const std::vector<std::string>& folders) {
+  if (!fs::exists(dir)) return true;
+  if (!fs::is_directory(dir))
+    throw FileError(fmt::format("{}: exists and is not a directory", dir.string()));
+  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+    std::string name = e.path().filename().string();
+    if (e.is_directory() && std::find(folders.begin(), folders.end(), name) != folders.end())
+      continue;
+    if (name.ends_with(".tmp")) name.resize(name.size() - 4);
+    if (std::find(files.begin(), files.end(), name) == files.end()) return false;
+  }
+  return true;
 }
 
 }  // namespace dyngen::gen

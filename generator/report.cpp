@@ -13,6 +13,7 @@
 #include "dyngen/numerics/reference.hpp"
 #include "names.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "template.hpp"
 
 namespace dyngen::gen {
@@ -20,35 +21,6 @@ namespace dyngen::gen {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (const char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return out + "'";
-}
-
-/// Runs a shell command with its output in log (and echoed, indented, if echo); throws with the
-/// log's last lines when it fails.
-void run(const std::string& what, const std::string& command, const fs::path& log, bool echo) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) throw std::runtime_error(fmt::format("{}: cannot start '{}'", what, command));
-  std::ofstream out(log, std::ios::binary);
-  std::vector<std::string> tail;
-  char line[4096];
-  while (std::fgets(line, sizeof line, pipe)) {
-    out << line;
-    if (echo) fmt::print("  {}", line), std::fflush(stdout);
-    tail.emplace_back(line);
-    if (tail.size() > 30) tail.erase(tail.begin());
-  }
-  const int status = pclose(pipe);
-  if (status != 0) {
-    std::string last;
-    for (const std::string& l : tail) last += "  " + l;
-    throw std::runtime_error(fmt::format("{} failed (exit status {}); the end of {}:\n{}", what,
-                                         status, log.string(), last));
-  }
-}
 
 /// A number of the harness's JSON, where an infinite error (a non-finite output) is null.
 double number(const nlohmann::json& j) {
@@ -223,23 +195,6 @@ std::pair<std::string, std::string> plot_parts(const nlohmann::json& results, in
   return {data, plots};
 }
 
-/// A directory that dyngen report may write into without --force: new, empty, or holding only
-/// what an earlier report wrote.
-bool report_may_write(const fs::path& dir) {
-  if (!fs::exists(dir)) return true;
-  if (!fs::is_directory(dir))
-    throw FileError(fmt::format("{}: exists and is not a directory", dir.string()));
-  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
-    std::string name = e.path().filename().string();
-    if (name == "harness" && e.is_directory()) continue;
-    if (name.ends_with(".tmp")) name.resize(name.size() - 4);
-    if (std::find(std::begin(report_files), std::end(report_files), name) ==
-        std::end(report_files))
-      return false;
-  }
-  return true;
-}
-
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 }  // namespace
@@ -248,7 +203,8 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   const std::string name = identifier(robot.name);
   const fs::path out_dir(dir);
   const fs::path work = out_dir / "harness";
-  if (!options.force && !report_may_write(out_dir))
+  if (!options.force &&
+      !holds_only(out_dir, {std::begin(report_files), std::end(report_files)}, {"harness"}))
     throw FileError(fmt::format(
         "{}: exists and holds files that dyngen report did not write; it writes only into a new "
         "or empty directory or over an earlier report. Choose another directory, or give --force "
@@ -285,23 +241,23 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
 
   step(2, fmt::format("configuring the harness in {}", work.string()));
   const fs::path build = work / "build";
-  run("configuring the harness",
-      fmt::format("cmake -S {} -B {} -Ddyngen_DIR={}", quoted(work.string()),
-                  quoted(build.string()), quoted(options.package_dir)),
+  run_logged("configuring the harness",
+      fmt::format("cmake -S {} -B {} -Ddyngen_DIR={}", shell_quoted(work.string()),
+                  shell_quoted(build.string()), shell_quoted(options.package_dir)),
       work / "configure.log", false);
   step(3, "building the harness (the generated code four times; big robots take minutes)");
-  run("building the harness",
-      fmt::format("cmake --build {} -j {}", quoted(build.string()),
+  run_logged("building the harness",
+      fmt::format("cmake --build {} -j {}", shell_quoted(build.string()),
                   std::max(1u, std::thread::hardware_concurrency())),
       work / "build.log", false);
 
   step(4, fmt::format("measuring errors on {} states, then timing", options.states));
   const fs::path results_path = work / "results.json";
-  run("running the harness",
-      fmt::format("{} {} {} {} {} {} {} {}", quoted((build / (name + "_report")).string()),
+  run_logged("running the harness",
+      fmt::format("{} {} {} {} {} {} {} {}", shell_quoted((build / (name + "_report")).string()),
                   options.states, options.seed, options.timed_states, options.min_time,
                   options.repetitions, numerics::reference_bits(c.aba_digits_lost()),
-                  quoted(results_path.string())),
+                  shell_quoted(results_path.string())),
       work / "run.log", !options.quiet);
 
   step(5, "writing the report");
@@ -376,10 +332,10 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
     write_file(out_dir / ("report.gp" + tmp), script);
     if (have_gnuplot()) {
       written.push_back("report.svg");
-      run("drawing the plot with gnuplot",
+      run_logged("drawing the plot with gnuplot",
           fmt::format("cd {} && gnuplot -e \"output_file='report.svg{}'\" report.gp{} && "
                       "test -s report.svg{}",
-                      quoted(out_dir.string()), tmp, tmp, tmp),
+                      shell_quoted(out_dir.string()), tmp, tmp, tmp),
           work / "plot.log", false);
     } else {
       fmt::print(stderr, "dyngen report: warning: gnuplot not found; no plot drawn (install "
