@@ -30,8 +30,14 @@ const char* qemu_machine(Target target) {
   switch (target) {
     case Target::CortexM4F: return "mps2-an386";
     case Target::CortexM7: return "mps2-an500";
+    case Target::CortexM33: return "mps2-an505";
     default: return nullptr;
   }
+}
+
+const char* processor_name(Target target) {
+  return target == Target::CortexM4F ? "Cortex-M4F" : target == Target::CortexM7 ? "Cortex-M7"
+                                                                                 : "Cortex-M33";
 }
 
 std::string words(const std::vector<std::string>& list) {
@@ -133,9 +139,8 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
   const char* machine = qemu_machine(generate_options.target);
   const std::string target = target_names[static_cast<int>(generate_options.target)];
   if (!machine)
-    throw InputError(fmt::format("--target {}: dyngen firmware-report runs {} and {} (qemu's "
-                                 "mps2-an386 and mps2-an500)",
-                                 target, firmware_report_targets[0], firmware_report_targets[1]));
+    throw InputError(fmt::format("--target {}: dyngen firmware-report runs {}", target,
+                                 fmt::join(firmware_report_targets, ", ")));
   const fs::path out_dir(dir), package_dir = out_dir / "package", build = out_dir / "build";
   if (!options.force &&
       !holds_only(out_dir, {std::begin(firmware_report_files), std::end(firmware_report_files)},
@@ -193,7 +198,18 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
                    {"calls", harness_calls(generate_options.algorithms, dialect)},
                    {"stack_prints", stack_prints}}));
   write_file(build / "startup.c", std::string(template_text("startup.c")));
-  write_file(build / "cortex_m.ld", std::string(template_text("cortex_m.ld")));
+  std::string linker_script(template_text("cortex_m.ld"));
+  if (generate_options.target == Target::CortexM33) {
+    // mps2-an505 starts a Cortex-M33 in the secure state at 0x10000000, SRAM secure at 0x38000000
+    for (const auto& [from, to] : {std::pair{"ORIGIN = 0x00000000", "ORIGIN = 0x10000000"},
+                                   std::pair{"ORIGIN = 0x20000000", "ORIGIN = 0x38000000"}}) {
+      const std::size_t at = linker_script.find(from);
+      if (at == std::string::npos)
+        throw std::logic_error(std::string("internal error: cortex_m.ld has no ") + from);
+      linker_script.replace(at, std::string_view(from).size(), to);
+    }
+  }
+  write_file(build / "cortex_m.ld", linker_script);
 
   const Toolchain cross = toolchain(target), host = toolchain("host");
   std::vector<std::string> warnings{"-Wall", "-Wextra", "-Werror"};
@@ -313,7 +329,7 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
       "- C library or libm in the image ({}): {}\n"
       "- Software double in the image: {}\n"
       "- Every stack bound at least the measured use and at most 1.5 times it: {}\n",
-      safe_text(robot.name), target == "cortex-m7" ? "Cortex-M7" : "Cortex-M4F", machine, single ? "float" : "double", c ? "C" : "C++",
+      safe_text(robot.name), processor_name(generate_options.target), machine, single ? "float" : "double", c ? "C" : "C++",
       generated.footprint->compiler, rows,
       generated.footprint->common_code_bytes, options.states, yes_no_equal,
       fmt::join(forbidden_symbols, ", "),

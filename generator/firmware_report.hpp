@@ -1,4 +1,4 @@
-// dyngen firmware-report ROBOT -o DIR --target cortex-m4f|cortex-m7: what a package costs and
+// dyngen firmware-report ROBOT -o DIR --target cortex-m4f|cortex-m7|cortex-m33: what a package costs and
 // computes on the microcontroller, measured under qemu rather than estimated: per function its
 // code bytes and stack bound (the banner's, from --measure), the stack it used (painted), the
 // instructions per call, and whether its outputs equal the host's bit for bit; and that the
@@ -26,8 +26,9 @@ struct FirmwareReportOptions {
 inline constexpr const char* firmware_report_files[] = {"firmware-report.md",
                                                         "firmware-report.json"};
 
-/// The targets firmware-report runs, with their qemu machines.
-inline constexpr const char* firmware_report_targets[] = {"cortex-m4f", "cortex-m7"};
+/// The targets firmware-report runs, on qemu's mps2-an386, mps2-an500 and mps2-an505.
+inline constexpr const char* firmware_report_targets[] = {"cortex-m4f", "cortex-m7",
+                                                          "cortex-m33"};
 
 /// Generates the package into dir/package, builds the harness for the target and the host in
 /// dir/build, runs both, and writes the report. Returns the checks that failed (none: empty).

@@ -1,5 +1,5 @@
 /* The least a Cortex-M needs to run under qemu (mps2-an386 = Cortex-M4F, mps2-an500 =
- * Cortex-M7): the vector table, .data copied and .bss cleared, the FPU switched on, and ARM
+ * Cortex-M7, mps2-an505 = Cortex-M33): the vector table, .data copied and .bss cleared, the FPU switched on, and ARM
  * semihosting for output and the exit code. No C library. A program may define
  * systick_handler; the others' faults print "fault" and exit with status 3. */
 extern unsigned _sidata[], _sdata[], _edata[], _sbss[], _ebss[], _estack[];
