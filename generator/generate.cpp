@@ -226,8 +226,8 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   if (!std::is_same_v<T, float> && target_single_precision(options.target))
     result.warnings.push_back(fmt::format(
         "--target {}: its FPU computes in single precision only, so double code runs in "
-        "software floating point there, about 30 times the instructions of float (ur5's rnea: "
-        "43,641 instructions on a Cortex-M4F against 1,401 in double on a Cortex-M7 and 1,177 in "
+        "software floating point there, about 35 times the instructions of float (ur5's rnea: "
+        "50,346 instructions on a Cortex-M4F against 1,401 in double on a Cortex-M7 and 1,181 in "
         "float on the M4F); generate --scalar float",
         target_names[static_cast<int>(options.target)]));
   const Dialect dialect{options.language, ns};
