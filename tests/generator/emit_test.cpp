@@ -362,6 +362,50 @@ TEST(GeneratedPackage, CopiesTheRuntimeSinCosVerbatim) {
 INSTANTIATE_TEST_SUITE_P(Scalars, Emitted, ::testing::Bool(),
                          [](const auto& info) { return info.param ? "float" : "double"; });
 
+// --lang c prints the same program: the same statements in the same order, spelled for C
+TEST(CLanguage, PrintsTheStatementsOfTheCppCode) {
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf",
+                                 LoadOptions{.floating_base = true});
+  std::map<Language, std::vector<std::string>> statements;
+  for (const Language language : {Language::Cpp, Language::C}) {
+    GenerateOptions options;
+    options.name = "solo";
+    options.language = language;
+    options.algorithms = {"rnea", "aba", "minv"};
+    for (const GeneratedFile& f : generate(robot, options).files) {
+      if (!f.name.starts_with("solo_dynamics.c")) continue;
+      for (std::string line : lines_of(f.text)) {
+        // statements, and calls of the shared functions
+        if (!line.starts_with("    const double ") &&
+            !(line.starts_with("        ") && line.find("_shape_") != std::string::npos))
+          continue;
+        for (std::size_t at; (at = line.find("trig->")) != std::string::npos;)
+          line.replace(at, 6, "trig.");
+        statements[language].push_back(line);
+      }
+    }
+  }
+  ASSERT_GT(statements[Language::Cpp].size(), 1000u);
+  EXPECT_EQ(statements[Language::C], statements[Language::Cpp]);
+}
+
+TEST(CLanguage, RefusesAlgorithmsThatCallKernels) {
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/atlas.urdf",
+                                 LoadOptions{.floating_base = true});
+  GenerateOptions options;
+  options.name = "atlas";
+  options.language = Language::C;
+  options.algorithms = {"rnea", "rnea_derivatives"};
+  try {
+    generate(robot, options);
+    ADD_FAILURE() << "generated";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rnea_derivatives of this robot calls kernels"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(JointDescription, NamesAxisAlignedAndGeneralJoints) {
   Model<double> m;
   m.nbodies = 4;
