@@ -79,7 +79,10 @@ TEST(Template, FillsEveryPlaceholderOfEveryTemplate) {
 }
 
 const std::map<std::string, std::string> check_values{
-    {"name", "gravity"}, {"namespace", "ur5"}, {"arguments", "x[0].data(), y[0].data()"}};
+    {"name", "gravity"},
+    {"namespace", "ur5"},
+    {"call", "ur5::gravity"},
+    {"arguments", "x[0].data(), y[0].data()"}};
 
 TEST(Template, ReplacesEveryOccurrenceOfAKey) {
   const std::string text(template_text("function_check.cpp.in"));
