@@ -6,6 +6,7 @@
 #include "dyngen/aba_derivatives.hpp"
 #include "dyngen/algorithms.hpp"
 #include "dyngen/crba.hpp"
+#include "dyngen/frames.hpp"
 #include "dyngen/kinematics.hpp"
 #include "dyngen/model.hpp"
 #include "dyngen/minv.hpp"

@@ -43,6 +43,15 @@ inline int joint_nq(JointType t) { return t == JointType::Free ? 7 : 1; }
 /// Entries of the joint in v, a, tau and the rows of M.
 inline int joint_nv(JointType t) { return t == JointType::Free ? 6 : 1; }
 
+/// A named frame fixed to a body: every URDF link is one, on its own body or, when a fixed joint
+/// merged it, on the body it merged into (a tool flange, a foot, a sensor).
+template <class S>
+struct Frame {
+  std::string name;
+  int body = -1;        // -1: the fixed base
+  Xform<S> placement;   // from the body's coordinates to the frame's, as X_tree
+};
+
 template <class S>
 struct Model {
   int nbodies = 0;                     // bodies, not counting the fixed base
@@ -58,6 +67,7 @@ struct Model {
   Vec3<S> gravity;                     // gravitational acceleration, base coordinates
   std::vector<std::string> body_name;  // [nbodies]
   std::vector<std::string> joint_name; // [nbodies]
+  std::vector<Frame<S>> frames;        // the frames whose placements and Jacobians are asked for
 
   /// The same model in another scalar type; each constant is converted with static_cast.
   template <class T>
@@ -75,14 +85,12 @@ struct Model {
     m.gravity = cast_vec<T>(gravity);
     for (int i = 0; i < nbodies; ++i) {
       m.joint_axis.push_back(cast_vec<T>(joint_axis[i]));
-      const Mat3<S>& E = X_tree[i].E;
-      m.X_tree.push_back({{c<T>(E.xx), c<T>(E.xy), c<T>(E.xz), c<T>(E.yx), c<T>(E.yy),
-                           c<T>(E.yz), c<T>(E.zx), c<T>(E.zy), c<T>(E.zz)},
-                          cast_vec<T>(X_tree[i].r)});
+      m.X_tree.push_back(cast_xform<T>(X_tree[i]));
       const Sym3<S>& J = I[i].I;
       m.I.push_back({c<T>(I[i].m), cast_vec<T>(I[i].h),
                      {c<T>(J.xx), c<T>(J.yy), c<T>(J.zz), c<T>(J.xy), c<T>(J.xz), c<T>(J.yz)}});
     }
+    for (const Frame<S>& f : frames) m.frames.push_back({f.name, f.body, cast_xform<T>(f.placement)});
     return m;
   }
 
@@ -94,6 +102,13 @@ struct Model {
   template <class T>
   static Vec3<T> cast_vec(const Vec3<S>& v) {
     return {c<T>(v.x), c<T>(v.y), c<T>(v.z)};
+  }
+  template <class T>
+  static Xform<T> cast_xform(const Xform<S>& X) {
+    const Mat3<S>& E = X.E;
+    return {{c<T>(E.xx), c<T>(E.xy), c<T>(E.xz), c<T>(E.yx), c<T>(E.yy), c<T>(E.yz), c<T>(E.zx),
+             c<T>(E.zy), c<T>(E.zz)},
+            cast_vec<T>(X.r)};
   }
 };
 

@@ -321,15 +321,16 @@ class ModelBuilder {
   // body, in the same order. Returns the links visited.
   int visit(Model<double>& model, const std::vector<std::vector<int>>& child_joints, int root,
             int root_body) const {
-    struct Frame {
+    struct Visit {
       int link, body;
       Xform<double> X_link_body;  // the link's frame from its body's
       std::size_t next = 0;       // its next child joint
     };
-    std::vector<Frame> stack{{root, root_body, identity()}};
+    std::vector<Visit> stack{{root, root_body, identity()}};
+    model.frames.push_back({links_[root].name, root_body, identity()});
     int visited = 1;
     while (!stack.empty()) {
-      Frame& top = stack.back();
+      Visit& top = stack.back();
       if (top.next == child_joints[top.link].size()) {
         stack.pop_back();
         continue;
@@ -345,6 +346,7 @@ class ModelBuilder {
         // range would be NaN, blamed on the body's inertia)
         if (body >= 0 && !is_massless(links_[c]))
           model.I[body] = model.I[body] + apply_inertia_T(X_child_body, link_inertia(links_[c]));
+        model.frames.push_back({links_[c].name, body, X_child_body});
         stack.push_back({c, body, X_child_body});
       } else if (joint.kind == JointKind::Planar) {
         const Vec3<double> n = unit_axis(joint);
@@ -356,6 +358,7 @@ class ModelBuilder {
                                 joint.name + ":w", links_[c].name + ":w", {});
         const int b = add_body(model, bw, identity(), revolute_type(n), n, joint.name + ":rot",
                                links_[c].name, link_inertia(links_[c]));
+        model.frames.push_back({links_[c].name, b, identity()});
         stack.push_back({c, b, identity()});
       } else {
         const JointType type = joint.kind == JointKind::Floating  ? JointType::Free
@@ -365,6 +368,7 @@ class ModelBuilder {
                                                                     : unit_axis(joint);
         const int b = add_body(model, body, X_child_body, type, axis, joint.name, links_[c].name,
                                link_inertia(links_[c]));
+        model.frames.push_back({links_[c].name, b, identity()});
         stack.push_back({c, b, identity()});
       }
     }

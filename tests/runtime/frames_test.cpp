@@ -1,0 +1,155 @@
+// Frames: the builder keeps every URDF link as a frame (those on fixed joints where they sit on
+// the body they merged into), and each frame's Jacobian is the derivative of its placement:
+// checked against central differences of frame_placements along every direction of v (a free
+// joint's by dyngen::integrate), in the base's axes and the frame's own.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <random>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "dyngen/dyngen.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace dyngen;
+
+TEST(Frames, EveryUrdfLinkIsAFrameOnTheBodyItMovesWith) {
+  const std::string path = test::model_path("ur5.urdf");
+  std::ifstream in(path);
+  const std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::set<std::string> links;
+  const std::regex link(R"re(<link\s+name="([^"]+)")re");
+  for (auto it = std::sregex_iterator(urdf.begin(), urdf.end(), link); it != std::sregex_iterator();
+       ++it)
+    links.insert((*it)[1]);
+  const Model<double> model = gen::load_robot(path).model;
+  std::set<std::string> frames;
+  for (const Frame<double>& f : model.frames) frames.insert(f.name);
+  EXPECT_EQ(frames, links);
+  ASSERT_EQ(model.frames.size(), links.size());
+  for (const Frame<double>& f : model.frames) {
+    SCOPED_TRACE(f.name);
+    // the URDF's world is the fixed base; base_link hangs on it by a fixed joint
+    if (f.name == "world" || f.name == "base_link") {
+      EXPECT_EQ(f.body, -1);
+    }
+    // a moving link is its body's own frame
+    const auto body = std::find(model.body_name.begin(), model.body_name.end(), f.name);
+    if (body != model.body_name.end()) {
+      EXPECT_EQ(f.body, body - model.body_name.begin());
+      EXPECT_EQ(f.placement.r.x, 0);
+      EXPECT_EQ(f.placement.E.xx, 1);
+    }
+  }
+  // ee_link: fixed to wrist_3_link at xyz 0 0.0823 0, rpy 0 0 pi/2 (ur5.urdf's ee_fixed_joint)
+  const auto ee = std::find_if(model.frames.begin(), model.frames.end(),
+                               [](const Frame<double>& f) { return f.name == "ee_link"; });
+  ASSERT_NE(ee, model.frames.end());
+  EXPECT_EQ(model.body_name[ee->body], "wrist_3_link");
+  EXPECT_NEAR(ee->placement.r.y, 0.0823, 1e-15);
+  EXPECT_NEAR(ee->placement.r.x, 0, 1e-15);
+  // E rotates wrist_3 coordinates into ee_link's: the transpose of Rz(pi/2)
+  EXPECT_NEAR(ee->placement.E.xy, 1, 1e-11);
+  EXPECT_NEAR(ee->placement.E.yx, -1, 1e-11);
+}
+
+struct Case {
+  std::string name;
+  std::function<Model<double>()> make;
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> all;
+  all.push_back({"spatial_chain_7", [] { return test::make_random_chain(7, 77, false); }});
+  all.push_back({"all_joints", [] {
+                   return gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
+                 }});
+  for (const std::string robot : {"ur5", "solo12", "atlas"})
+    for (const bool floating : {false, true})
+      all.push_back({robot + (floating ? "_floating" : ""), [=] {
+                       gen::LoadOptions options;
+                       options.floating_base = floating;
+                       return gen::load_robot(test::model_path(robot + ".urdf"), options).model;
+                     }});
+  return all;
+}
+
+void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
+
+class FrameJacobians : public ::testing::TestWithParam<Case> {};
+
+/// The angular velocity w with exp([w] 2h) = B A^T (both 3x3), for small 2h.
+Eigen::Vector3d rotation_rate(const Eigen::Matrix3d& after, const Eigen::Matrix3d& before,
+                              double two_h) {
+  const Eigen::Matrix3d D = after * before.transpose();
+  return Eigen::Vector3d(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1)) / (2 * two_h);
+}
+
+TEST_P(FrameJacobians, AreTheDerivativesOfThePlacements) {
+  Model<double> model = GetParam().make();
+  // the random chain has no URDF: a frame on each body, off its origin and turned
+  if (model.frames.empty())
+    for (int i = 0; i < model.nbodies; ++i)
+      model.frames.push_back({"frame" + std::to_string(i), i,
+                              {{0, 0.6, 0.8, 1, 0, 0, 0, 0.8, -0.6}, {0.1, -0.2, 0.3}}});
+  const int nv = model.nv, nf = static_cast<int>(model.frames.size());
+  ASSERT_GT(nf, 0);
+  Workspace<double> ws(model);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  std::vector<double> q(model.nq), d(nv, 0), qp(model.nq), qm(model.nq);
+  for (double& x : q) x = u(rng);
+  normalize_configuration<double>(model, q);
+  std::vector<double> R(9 * nf), p(3 * nf), Rp(R.size()), pp(p.size()), Rm(R.size()), pm(p.size());
+  std::vector<double> Jw(6 * nf * nv), Jl(Jw.size());
+  frame_placements<double>(model, ws, q, R, p);
+  frame_jacobians<double>(model, ws, q, JacobianAxes::World, Jw);
+  frame_jacobians<double>(model, ws, q, JacobianAxes::Local, Jl);
+  const double h = 1e-6;
+  double worst = 0, largest = 0;
+  for (int c = 0; c < nv; ++c) {
+    std::fill(d.begin(), d.end(), 0.0);
+    d[c] = h;
+    integrate<double>(model, q, d, qp);
+    d[c] = -h;
+    integrate<double>(model, q, d, qm);
+    frame_placements<double>(model, ws, qp, Rp, pp);
+    frame_placements<double>(model, ws, qm, Rm, pm);
+    for (int f = 0; f < nf; ++f) {
+      using M3 = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
+      const M3 Rf(&R[9 * f]), Rpf(&Rp[9 * f]), Rmf(&Rm[9 * f]);
+      const Eigen::Vector3d lin = (Eigen::Vector3d(&pp[3 * f]) - Eigen::Vector3d(&pm[3 * f])) / (2 * h);
+      const Eigen::Vector3d ang = rotation_rate(Rpf, Rmf, 2 * h);
+      const Eigen::Vector3d local_lin = Rf.transpose() * lin, local_ang = Rf.transpose() * ang;
+      for (int row = 0; row < 3; ++row) {
+        const std::size_t at = (6 * static_cast<std::size_t>(f) + row) * nv + c;
+        const std::size_t ang_at = at + 3 * static_cast<std::size_t>(nv);
+        for (const auto& [J, expected] :
+             {std::pair{Jw[at], lin[row]}, std::pair{Jw[ang_at], ang[row]},
+              std::pair{Jl[at], local_lin[row]}, std::pair{Jl[ang_at], local_ang[row]}}) {
+          worst = std::max(worst, std::abs(J - expected));
+          largest = std::max(largest, std::abs(expected));
+        }
+      }
+    }
+  }
+  // central differences: truncation h^2 |third derivative| and rounding eps |p| / h, both
+  // about 1e-10 here; a wrong column is off by O(1)
+  EXPECT_LT(worst, 1e-7 * std::max(1.0, largest)) << "largest entry " << largest;
+  EXPECT_GT(largest, 0.1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, FrameJacobians, ::testing::ValuesIn(cases()),
+                         [](const auto& info) { return info.param.name; });
+
+}  // namespace
