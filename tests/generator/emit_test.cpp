@@ -363,9 +363,15 @@ INSTANTIATE_TEST_SUITE_P(Scalars, Emitted, ::testing::Bool(),
                          [](const auto& info) { return info.param ? "float" : "double"; });
 
 // --lang c prints the same program: the same statements in the same order, spelled for C
+LoadOptions floating_base() {
+  LoadOptions options;
+  options.floating_base = true;
+  return options;
+}
+
 TEST(CLanguage, PrintsTheStatementsOfTheCppCode) {
-  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf",
-                                 LoadOptions{.floating_base = true});
+  const Robot robot =
+      load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", floating_base());
   std::map<Language, std::vector<std::string>> statements;
   for (const Language language : {Language::Cpp, Language::C}) {
     GenerateOptions options;
@@ -390,8 +396,8 @@ TEST(CLanguage, PrintsTheStatementsOfTheCppCode) {
 }
 
 TEST(CLanguage, RefusesAlgorithmsThatCallKernels) {
-  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/atlas.urdf",
-                                 LoadOptions{.floating_base = true});
+  const Robot robot =
+      load_robot(std::string(DYNGEN_TEST_MODELS) + "/atlas.urdf", floating_base());
   GenerateOptions options;
   options.name = "atlas";
   options.language = Language::C;
