@@ -163,7 +163,8 @@ Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::
 
   // code bytes by symbol: what belongs to one algorithm, and what they share
   const std::string symbols =
-      output_of(fmt::format("{} -S -C --defined-only {}", shell_quoted(toolchain.nm), shell_quoted(object.string())),
+      output_of(fmt::format("{} -S -C --defined-only {}", shell_quoted(toolchain.nm),
+                            shell_quoted(object.string())),
                 "reading the measured package's symbols");
   std::map<std::string, long> code;
   std::istringstream lines(symbols);

@@ -1,7 +1,8 @@
 // Frames: the builder keeps every URDF link as a frame (those on fixed joints where they sit on
-// the body they merged into), and each frame's Jacobian is the derivative of its placement:
-// checked against central differences of frame_placements along every direction of v (a free
-// joint's by dyngen::integrate), in the base's axes and the frame's own.
+// the body they merged into); each frame's Jacobian is the derivative of its placement, checked
+// against central differences of frame_placements along every direction of v (a free joint's
+// by dyngen::integrate), and its bias acceleration the derivative of J v along the motion, in
+// the base's axes and the frame's own.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -128,7 +129,8 @@ TEST_P(FrameJacobians, AreTheDerivativesOfThePlacements) {
     for (int f = 0; f < nf; ++f) {
       using M3 = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
       const M3 Rf(&R[9 * f]), Rpf(&Rp[9 * f]), Rmf(&Rm[9 * f]);
-      const Eigen::Vector3d lin = (Eigen::Vector3d(&pp[3 * f]) - Eigen::Vector3d(&pm[3 * f])) / (2 * h);
+      const Eigen::Vector3d lin =
+          (Eigen::Vector3d(&pp[3 * f]) - Eigen::Vector3d(&pm[3 * f])) / (2 * h);
       const Eigen::Vector3d ang = rotation_rate(Rpf, Rmf, 2 * h);
       const Eigen::Vector3d local_lin = Rf.transpose() * lin, local_ang = Rf.transpose() * ang;
       for (int row = 0; row < 3; ++row) {
@@ -146,6 +148,59 @@ TEST_P(FrameJacobians, AreTheDerivativesOfThePlacements) {
   // central differences: truncation h^2 |third derivative| and rounding eps |p| / h, both
   // about 1e-10 here; a wrong column is off by O(1)
   EXPECT_LT(worst, 1e-7 * std::max(1.0, largest)) << "largest entry " << largest;
+  EXPECT_GT(largest, 0.1);
+}
+
+// Jdot v at qdd = 0 is the time derivative of J(q(t)) v along q(t) = q (+) t v, in the base's
+// axes; in the frame's own it is that derivative expressed in them (R^T Jdot_world v), so that
+// J_local qdd + Jdot_v_local is the frame's acceleration in its own axes.
+TEST_P(FrameJacobians, BiasAccelerationsAreTheDerivativeOfJAlongTheMotion) {
+  Model<double> model = GetParam().make();
+  if (model.frames.empty())
+    for (int i = 0; i < model.nbodies; ++i)
+      model.frames.push_back({"frame" + std::to_string(i), i,
+                              {{0, 0.6, 0.8, 1, 0, 0, 0, 0.8, -0.6}, {0.1, -0.2, 0.3}}});
+  const int nv = model.nv, nf = static_cast<int>(model.frames.size());
+  Workspace<double> ws(model);
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  std::vector<double> q(model.nq), v(nv), d(nv), qp(model.nq), qm(model.nq);
+  for (double& x : q) x = u(rng);
+  for (double& x : v) x = u(rng);
+  normalize_configuration<double>(model, q);
+  std::vector<double> R(9 * nf), p(3 * nf), Jp(6 * nf * nv), Jm(Jp.size()), world(6 * nf),
+      local(6 * nf);
+  frame_placements<double>(model, ws, q, R, p);
+  frame_bias_accelerations<double>(model, ws, q, v, JacobianAxes::World, world);
+  frame_bias_accelerations<double>(model, ws, q, v, JacobianAxes::Local, local);
+  const double h = 1e-6;
+  for (int k = 0; k < nv; ++k) d[k] = h * v[k];
+  integrate<double>(model, q, d, qp);
+  for (int k = 0; k < nv; ++k) d[k] = -h * v[k];
+  integrate<double>(model, q, d, qm);
+  frame_jacobians<double>(model, ws, qp, JacobianAxes::World, Jp);
+  frame_jacobians<double>(model, ws, qm, JacobianAxes::World, Jm);
+  double worst = 0, largest = 0;
+  for (int f = 0; f < nf; ++f) {
+    Eigen::Matrix<double, 6, 1> expected;
+    for (int row = 0; row < 6; ++row) {
+      double plus = 0, minus = 0;
+      for (int c = 0; c < nv; ++c) {
+        plus += Jp[(6 * static_cast<std::size_t>(f) + row) * nv + c] * v[c];
+        minus += Jm[(6 * static_cast<std::size_t>(f) + row) * nv + c] * v[c];
+      }
+      expected[row] = (plus - minus) / (2 * h);
+    }
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Rf(&R[9 * f]);
+    Eigen::Matrix<double, 6, 1> expected_local;
+    expected_local << Rf.transpose() * expected.head<3>(), Rf.transpose() * expected.tail<3>();
+    for (int row = 0; row < 6; ++row) {
+      worst = std::max({worst, std::abs(world[6 * f + row] - expected[row]),
+                        std::abs(local[6 * f + row] - expected_local[row])});
+      largest = std::max(largest, std::abs(expected[row]));
+    }
+  }
+  EXPECT_LT(worst, 1e-6 * std::max(1.0, largest)) << "largest entry " << largest;
   EXPECT_GT(largest, 0.1);
 }
 

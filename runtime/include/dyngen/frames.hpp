@@ -1,7 +1,8 @@
-// Frames: where the model's named frames are (forward kinematics, RBDA sec. 4.2) and their
+// Frames: where the model's named frames are (forward kinematics, RBDA sec. 4.2), their
 // Jacobians, the map from v to each frame's velocity (a column per joint on the frame's path to
-// the base, RBDA sec. 8.4). Matrices are row-major; per frame f, R[9 f + 3 i + j] and
-// p[3 f + i], and J[(6 f + row) nv + column] with the linear rows first, then the angular ones.
+// the base, RBDA sec. 8.4), and their bias accelerations Jdot v. Matrices are row-major; per frame
+// f, R[9 f + 3 i + j] and p[3 f + i], J[(6 f + row) nv + column] and Jdot_v[6 f + row], with
+// the linear rows first, then the angular ones.
 #pragma once
 
 #include <span>
@@ -76,6 +77,45 @@ void frame_jacobians(const Model<S>& model, Workspace<S>& ws, std::span<const S>
         Jf[3 * nv + c] = ang.x, Jf[4 * nv + c] = ang.y, Jf[5 * nv + c] = ang.z;
       }
     }
+  }
+}
+
+/// Each frame's bias acceleration at q, v: the classical acceleration of its origin and its
+/// angular acceleration at qdd = 0, 6 per frame (linear first), so that a frame's acceleration is
+/// J qdd + this (Jdot v); in the base's axes or the frame's own. The bodies' spatial accelerations
+/// at qdd = 0 (RBDA eq. 5.7 with qdd = 0: a_i = X_i a_p + v_i x vJ_i), taken to the base and then
+/// to the origin p: a_p = a.lin + a.ang x p + w x (v.lin + w x p).
+template <class S>
+void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
+                              std::span<const S> v, JacobianAxes axes, std::span<S> out) {
+  for (int i = 0; i < model.nbodies; ++i) {
+    const int p = model.parent[i];
+    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
+    const Motion<S> vJ = joint_motion(model, i, &v[model.v_index[i]]);
+    if (p < 0) {
+      ws.X0[i] = ws.Xup[i];
+      ws.v[i] = vJ;
+      ws.a[i] = Motion<S>{};  // the base does not move, and vJ x vJ = 0
+    } else {
+      ws.X0[i] = compose(ws.Xup[i], ws.X0[p]);
+      ws.v[i] = apply_motion(ws.Xup[i], ws.v[p]) + vJ;
+      ws.a[i] = apply_motion(ws.Xup[i], ws.a[p]) + cross_motion(ws.v[i], vJ);
+    }
+  }
+  for (int f = 0; f < static_cast<int>(model.frames.size()); ++f) {
+    S* o = &out[6 * f];
+    const int b = model.frames[f].body;
+    if (b < 0) {
+      for (int k = 0; k < 6; ++k) o[k] = S(0);
+      continue;
+    }
+    const Xform<S> X = detail::frame_transform(model, ws, f);
+    const Motion<S> v0 = apply_motion_inv(ws.X0[b], ws.v[b]);
+    const Motion<S> a0 = apply_motion_inv(ws.X0[b], ws.a[b]);
+    const Vec3<S> v_origin = v0.lin + cross(v0.ang, X.r);
+    Vec3<S> lin = a0.lin + cross(a0.ang, X.r) + cross(v0.ang, v_origin), ang = a0.ang;
+    if (axes == JacobianAxes::Local) lin = mul(X.E, lin), ang = mul(X.E, ang);
+    o[0] = lin.x, o[1] = lin.y, o[2] = lin.z, o[3] = ang.x, o[4] = ang.y, o[5] = ang.z;
   }
 }
 
