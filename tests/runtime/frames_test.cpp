@@ -204,6 +204,75 @@ TEST_P(FrameJacobians, BiasAccelerationsAreTheDerivativeOfJAlongTheMotion) {
   EXPECT_GT(largest, 0.1);
 }
 
+// The centre of mass against the potential energy (kinematics.hpp: V = -g . sum m_i c_i, taken
+// with unit gravities along x, y and z), its Jacobian against central differences, and each
+// column of the centroidal momentum matrix against kinematics.hpp's momentum at v = that unit
+// velocity, moved from the base origin to the centre of mass.
+TEST_P(FrameJacobians, CentreOfMassAndCentroidalMomentum) {
+  Model<double> model = GetParam().make();
+  const int nv = model.nv;
+  Workspace<double> ws(model);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  std::vector<double> q(model.nq), v(nv, 0), d(nv, 0), qp(model.nq), qm(model.nq);
+  for (double& x : q) x = u(rng);
+  normalize_configuration<double>(model, q);
+  std::vector<double> c(3), Jc(3 * nv), cp(3), cm(3), Jp(Jc.size()), A(6 * nv), h(6);
+  com<double>(model, ws, q, c, Jc);
+  double mass = 0;
+  for (const RigidInertia<double>& I : model.I) mass += I.m;
+  ASSERT_GT(mass, 0);
+  for (int axis = 0; axis < 3; ++axis) {
+    Model<double> pulled = model;
+    pulled.gravity = {axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0};
+    forward_kinematics<double>(pulled, ws, q, v);
+    EXPECT_NEAR(c[axis], -potential_energy(pulled, ws) / mass, 1e-12 * (1 + std::abs(c[axis])));
+  }
+  const double step = 1e-6;
+  double worst = 0, largest = 0;
+  for (int k = 0; k < nv; ++k) {
+    std::fill(d.begin(), d.end(), 0.0);
+    d[k] = step;
+    integrate<double>(model, q, d, qp);
+    d[k] = -step;
+    integrate<double>(model, q, d, qm);
+    com<double>(model, ws, qp, cp, Jp);
+    com<double>(model, ws, qm, cm, Jp);
+    for (int row = 0; row < 3; ++row) {
+      const double expected = (cp[row] - cm[row]) / (2 * step);
+      worst = std::max(worst, std::abs(Jc[row * nv + k] - expected));
+      largest = std::max(largest, std::abs(expected));
+    }
+  }
+  EXPECT_LT(worst, 1e-7 * std::max(1.0, largest)) << "largest entry " << largest;
+  EXPECT_GT(largest, 0.01);
+
+  std::vector<double> w(nv);
+  for (double& x : w) x = u(rng);
+  centroidal<double>(model, ws, q, w, A, h);
+  const Eigen::Vector3d centre(c[0], c[1], c[2]);
+  double momentum_scale = 0;
+  std::vector<double> expected_h(6, 0.0);
+  worst = 0;
+  for (int k = 0; k < nv; ++k) {
+    std::fill(v.begin(), v.end(), 0.0);
+    v[k] = 1;
+    forward_kinematics<double>(model, ws, q, v);
+    const Force<double> m = momentum(model, ws);
+    const Eigen::Vector3d lin(m.lin.x, m.lin.y, m.lin.z);
+    const Eigen::Vector3d ang = Eigen::Vector3d(m.ang.x, m.ang.y, m.ang.z) - centre.cross(lin);
+    for (int row = 0; row < 6; ++row) {
+      const double expected = row < 3 ? lin[row] : ang[row - 3];
+      worst = std::max(worst, std::abs(A[row * nv + k] - expected));
+      momentum_scale = std::max(momentum_scale, std::abs(expected));
+      expected_h[row] += expected * w[k];
+    }
+  }
+  for (int row = 0; row < 6; ++row) worst = std::max(worst, std::abs(h[row] - expected_h[row]));
+  EXPECT_LT(worst, 1e-12 * nv * momentum_scale) << "largest entry " << momentum_scale;
+  EXPECT_GT(momentum_scale, 0.01);
+}
+
 INSTANTIATE_TEST_SUITE_P(Models, FrameJacobians, ::testing::ValuesIn(cases()),
                          [](const auto& info) { return info.param.name; });
 

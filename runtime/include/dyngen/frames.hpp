@@ -1,8 +1,9 @@
 // Frames: where the model's named frames are (forward kinematics, RBDA sec. 4.2), their
 // Jacobians, the map from v to each frame's velocity (a column per joint on the frame's path to
-// the base, RBDA sec. 8.4), and their bias accelerations Jdot v. Matrices are row-major; per frame
-// f, R[9 f + 3 i + j] and p[3 f + i], J[(6 f + row) nv + column] and Jdot_v[6 f + row], with
-// the linear rows first, then the angular ones.
+// the base, RBDA sec. 8.4), and their bias accelerations Jdot v; and the robot's centre of mass,
+// its Jacobian and the centroidal momentum matrix. Matrices are row-major; per frame f,
+// R[9 f + 3 i + j] and p[3 f + i], J[(6 f + row) nv + column] and Jdot_v[6 f + row], with the
+// linear rows first, then the angular ones.
 #pragma once
 
 #include <span>
@@ -117,6 +118,69 @@ void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span
     if (axes == JacobianAxes::Local) lin = mul(X.E, lin), ang = mul(X.E, ang);
     o[0] = lin.x, o[1] = lin.y, o[2] = lin.z, o[3] = ang.x, o[4] = ang.y, o[5] = ang.z;
   }
+}
+
+namespace detail {
+
+/// ws.Ic[i]: the inertia of body i's subtree in base coordinates (about the base origin), after
+/// body_placements; returns the total.
+template <class S>
+RigidInertia<S> subtree_inertias_in_base(const Model<S>& model, Workspace<S>& ws) {
+  for (int i = 0; i < model.nbodies; ++i) ws.Ic[i] = apply_inertia_T(ws.X0[i], model.I[i]);
+  RigidInertia<S> total{};
+  for (int i = model.nbodies - 1; i >= 0; --i) {
+    if (model.parent[i] >= 0) ws.Ic[model.parent[i]] = ws.Ic[model.parent[i]] + ws.Ic[i];
+    else total = total + ws.Ic[i];
+  }
+  return total;
+}
+
+}  // namespace detail
+
+/// The centre of mass c (base coordinates) and its Jacobian Jc (3 x nv, row-major) at q. Column
+/// of joint j: (m s0.lin + s0.ang x h) / M, with m and h = m c the mass and first moment of j's
+/// subtree and s0 the joint's column at the base origin. A robot without mass has no centre.
+template <class S>
+void com(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<S> c,
+         std::span<S> Jc) {
+  detail::body_placements(model, ws, q);
+  const RigidInertia<S> total = detail::subtree_inertias_in_base(model, ws);
+  const S inverse_mass = S(1) / total.m;
+  c[0] = total.h.x * inverse_mass, c[1] = total.h.y * inverse_mass, c[2] = total.h.z * inverse_mass;
+  const int nv = model.nv;
+  for (int j = 0; j < model.nbodies; ++j)
+    for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
+      const Motion<S> s0 = apply_motion_inv(ws.X0[j], joint_column(model, j, d));
+      const Vec3<S> column =
+          scale(scale(s0.lin, ws.Ic[j].m) + cross(s0.ang, ws.Ic[j].h), inverse_mass);
+      const int k = model.v_index[j] + d;
+      Jc[k] = column.x, Jc[nv + k] = column.y, Jc[2 * nv + k] = column.z;
+    }
+}
+
+/// The centroidal momentum matrix A (6 x nv, row-major) and momentum h = A v at q, v (Orin,
+/// Goswami & Lee 2013): the linear momentum and the angular momentum about the centre of mass,
+/// in the base's axes (linear rows first). Column of joint j: the momentum of j's subtree moving
+/// with the joint's column, Ic_j s0 about the base origin, moved to the centre of mass.
+template <class S>
+void centroidal(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
+                std::span<const S> v, std::span<S> A, std::span<S> h) {
+  detail::body_placements(model, ws, q);
+  const RigidInertia<S> total = detail::subtree_inertias_in_base(model, ws);
+  const Vec3<S> c = scale(total.h, S(1) / total.m);
+  const int nv = model.nv;
+  for (int e = 0; e < 6; ++e) h[e] = S(0);
+  for (int j = 0; j < model.nbodies; ++j)
+    for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
+      const Force<S> m0 = mul(ws.Ic[j], apply_motion_inv(ws.X0[j], joint_column(model, j, d)));
+      const Vec3<S> angular = m0.ang - cross(c, m0.lin);
+      const int k = model.v_index[j] + d;
+      const S column[6] = {m0.lin.x, m0.lin.y, m0.lin.z, angular.x, angular.y, angular.z};
+      for (int row = 0; row < 6; ++row) {
+        A[row * nv + k] = column[row];
+        h[row] = h[row] + column[row] * v[k];
+      }
+    }
 }
 
 }  // namespace dyngen
