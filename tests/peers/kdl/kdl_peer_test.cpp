@@ -1,9 +1,13 @@
 // orocos-KDL against the runtime on every shared robot: inverse dynamics, the mass matrix and
-// forward dynamics at seeded random states, with a fixed and with a floating base. README.md
+// forward dynamics at seeded random states, with a fixed and with a floating base; and every
+// URDF link's placement and Jacobian (dyngen's frames). README.md
 // lists the modelling differences between the two libraries and how the test removes them.
 #include "kdl_peer.hpp"
 
 #include <gtest/gtest.h>
+
+#include <kdl/treefksolverpos_recursive.hpp>
+#include <kdl/treejnttojacsolver.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -173,6 +177,52 @@ TEST_P(KdlPeer, JointsAsInUrdf) {
 TEST_P(KdlPeer, FixedBase) { compare(false); }
 
 TEST_P(KdlPeer, FloatingBase) { compare(true); }
+
+// Every URDF link is a dyngen frame and a KDL segment: its pose (TreeFkSolverPos_recursive) and
+// Jacobian (TreeJntToJacSolver: at the segment's origin, base axes, linear rows first) against
+// frame_placements and frame_jacobians, whose columns map to KDL's joints by v = G qd_kdl.
+TEST_P(KdlPeer, FramePlacementsAndJacobians) {
+  const RobotFile& file = GetParam();
+  for (const bool floating_base : {false, true}) {
+    SCOPED_TRACE(floating_base ? "floating base" : "fixed base");
+    gen::LoadOptions options = file.options;
+    options.floating_base = floating_base;
+    const gen::Robot robot = gen::load_robot(file.path, options);
+    const Model<double>& model = robot.model;
+    const KDL::Tree tree = load_tree(file.path, robot.locked, floating_base);
+    const std::unique_ptr<Dynamics> names = tree_dynamics(tree, model.gravity);
+    KDL::TreeFkSolverPos_recursive fk(tree);
+    KDL::TreeJntToJacSolver jacobians(tree);
+    Workspace<double> ws(model);
+    const int nf = static_cast<int>(model.frames.size()), nv = model.nv;
+    std::vector<double> R(9 * nf), p(3 * nf), J(6 * static_cast<std::size_t>(nf) * nv);
+    Random rng(seed);
+    double largest = 0;
+    for (int n = 0; n < 5; ++n) {
+      const StatePair s = random_state_pair(model, names->joint_names(), rng);
+      frame_placements<double>(model, ws, view(s.q), R, p);
+      frame_jacobians<double>(model, ws, view(s.q), JacobianAxes::World, J);
+      KDL::JntArray q_kdl(static_cast<unsigned>(s.q_kdl.size()));
+      q_kdl.data = s.q_kdl;
+      for (int f = 0; f < nf; ++f) {
+        const std::string& name = model.frames[f].name;
+        KDL::Frame pose;
+        ASSERT_GE(fk.JntToCart(q_kdl, pose, name), 0) << name;
+        KDL::Jacobian jac(q_kdl.rows());
+        ASSERT_GE(jacobians.JntToJac(q_kdl, jac, name), 0) << name;
+        for (int k = 0; k < 9; ++k)
+          largest = std::max(largest, std::abs(R[9 * f + k] - pose.M.data[k]));
+        for (int k = 0; k < 3; ++k) largest = std::max(largest, std::abs(p[3 * f + k] - pose.p(k)));
+        const Eigen::MatrixXd J_dyngen =
+            Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+                &J[6 * static_cast<std::size_t>(f) * nv], 6, nv);
+        largest = std::max(largest, (J_dyngen * s.G - jac.data).cwiseAbs().maxCoeff());
+      }
+    }
+    // the poses are O(1) m and rad: an absolute bound
+    EXPECT_LT(largest, tolerance) << nf << " frames";
+  }
+}
 
 INSTANTIATE_TEST_SUITE_P(Robots, KdlPeer, testing::ValuesIn(robot_files()),
                          [](const testing::TestParamInfo<RobotFile>& info) {
