@@ -46,9 +46,7 @@ std::string words(const std::vector<std::string>& list) {
   return text;
 }
 
-std::string extent_expression(Extent e) {
-  return e == Extent::Nq ? "nq" : e == Extent::Nv ? "nv" : "nv * nv";
-}
+std::string extent_expression(const Extent& e) { return extent_text(e, "nq", "nv", "nframes"); }
 
 /// main's loop body: each function on state s, between the markers, its outputs printed.
 std::string harness_calls(const std::vector<Algorithm>& algorithms, const Dialect& dialect) {
@@ -193,6 +191,11 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
                    {"states", std::to_string(options.states)},
                    {"nq", c ? dialect.size("nq") : ns + "::nq"},
                    {"nv", c ? dialect.size("nv") : ns + "::nv"},
+                   {"frames_constant",
+                    generated.nframes == 0
+                        ? ""
+                        : fmt::format("constexpr int nframes = {};",
+                                      c ? dialect.size("nframes") : ns + "::nframes")},
                    {"quaternions", quaternions},
                    {"functions", std::to_string(generate_options.algorithms.size())},
                    {"calls", harness_calls(generate_options.algorithms, dialect)},

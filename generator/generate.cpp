@@ -107,9 +107,8 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
   return fmt::format("{}\n{}", text, conditioning);
 }
 
-std::string extent_text(Extent e, const Dialect& dialect) {
-  const std::string nv = dialect.size("nv");
-  return e == Extent::Nq ? dialect.size("nq") : e == Extent::Nv ? nv : nv + " * " + nv;
+std::string extent_in(const Extent& e, const Dialect& dialect) {
+  return extent_text(e, dialect.size("nq"), dialect.size("nv"), dialect.size("nframes"));
 }
 
 /// "void name(a, b, ...) noexcept" (C: no noexcept) wrapped at 100 columns, continuation lines
@@ -140,11 +139,11 @@ std::vector<std::string> parameters(const AlgorithmSpec<double>& spec, const std
                                     bool trig, const Dialect& dialect) {
   std::vector<std::string> out;
   for (const ArraySpec& a : spec.inputs) {
-    out.push_back(fmt::format("const {} {}[{}]", scalar, a.name, extent_text(a.extent, dialect)));
+    out.push_back(fmt::format("const {} {}[{}]", scalar, a.name, extent_in(a.extent, dialect)));
     if (trig && a.name == "q") out.push_back(dialect.trig_parameter(false));
   }
   for (const ArraySpec& a : spec.outputs)
-    out.push_back(fmt::format("{} {}[{}]", scalar, a.name, extent_text(a.extent, dialect)));
+    out.push_back(fmt::format("{} {}[{}]", scalar, a.name, extent_in(a.extent, dialect)));
   return out;
 }
 
@@ -161,7 +160,7 @@ std::string array_docs(const std::vector<Algorithm>& algorithms,
         if (std::any_of(entries.begin(), entries.end(),
                         [&](const auto& e) { return e.second->name == a.name; }))
           continue;
-        entries.emplace_back(fmt::format("{}[{}]", a.name, extent_text(a.extent, dialect)), &a);
+        entries.emplace_back(fmt::format("{}[{}]", a.name, extent_in(a.extent, dialect)), &a);
         width = std::max(width, entries.back().first.size() + 2);
       }
   }
@@ -206,13 +205,77 @@ std::string model_records(const Model<double>& model) {
   return out;
 }
 
+/// The model's frames as FrameRecords (model.hpp.in), or "" without frames.
+std::string frame_records(const Model<double>& model) {
+  if (model.frames.empty()) return "";
+  std::string out =
+      "\ninline const dyngen::FrameRecord model_frames[] = {\n"
+      "    // frame, body (-1: the base), placement E (row-major) and r from the body's frame\n";
+  auto list = [](std::initializer_list<double> xs) {
+    std::string s;
+    for (const double x : xs) s += (s.empty() ? "" : ", ") + literal(x);
+    return "{" + s + "}";
+  };
+  for (const Frame<double>& f : model.frames) {
+    const Mat3<double>& E = f.placement.E;
+    const Vec3<double>& r = f.placement.r;
+    out += fmt::format("    {{{}, {},\n     {},\n     {}}},\n", string_literal(f.name), f.body,
+                       list({E.xx, E.xy, E.xz, E.yx, E.yy, E.yz, E.zx, E.zy, E.zz}),
+                       list({r.x, r.y, r.z}));
+  }
+  return out + "};\n";
+}
+
+/// The header's frame count and names, or "" without frames.
+std::string frame_declarations(const Model<double>& model, const Dialect& dialect) {
+  if (model.frames.empty()) return "";
+  std::string names;
+  for (const Frame<double>& f : model.frames)
+    names += fmt::format("    {},\n", string_literal(f.name));
+  names.pop_back();
+  const std::string intro = fmt::format(
+      "\n/// The frames whose placements, Jacobians or accelerations the functions compute, in "
+      "order\n/// (--frames).\n");
+  if (dialect.c())
+    return fmt::format("{}#define {} {}\nextern const char* const {}[{}];\n", intro,
+                       dialect.size("nframes"), model.frames.size(),
+                       dialect.external("frame_names"), dialect.size("nframes"));
+  return fmt::format(
+      "{}inline constexpr int nframes = {};\ninline constexpr const char* frame_names[nframes] = "
+      "{{\n{}\n}};\n",
+      intro, model.frames.size(), names);
+}
+
+/// The C source's definition of the frame names, or "".
+std::string frame_names_definition(const Model<double>& model, const Dialect& dialect) {
+  if (model.frames.empty()) return "";
+  std::string names;
+  for (const Frame<double>& f : model.frames)
+    names += fmt::format("    {},\n", string_literal(f.name));
+  return fmt::format("\nconst char* const {}[{}] = {{\n{}}};\n", dialect.external("frame_names"),
+                     dialect.size("nframes"), names);
+}
+
+/// Whether an algorithm has an array per frame.
+bool uses_frames(const Algorithm& a) {
+  const AlgorithmSpec<double>& spec = algorithm_spec(a);
+  for (const auto* list : {&spec.inputs, &spec.outputs})
+    for (const ArraySpec& array : *list)
+      if (array.extent.per_frame) return true;
+  return false;
+}
+
 template <class T>
 Generated generate_as(const Robot& robot, const GenerateOptions& options) {
-  const Model<double>& model = robot.model;
+  // frames only where a function computes something of them
+  Model<double> model = robot.model;
+  if (std::none_of(options.algorithms.begin(), options.algorithms.end(), uses_frames))
+    model.frames.clear();
   const std::string ns = options.name;
   const std::string scalar = std::is_same_v<T, float> ? "float" : "double";
 
   Generated result;
+  result.nframes = static_cast<int>(model.frames.size());
   const bool with_aba = !pivot_algorithms(options.algorithms).empty();
   const auto step = [&](const std::string& text) {
     if (options.progress) options.progress(text);
@@ -341,6 +404,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
         {"nq", std::to_string(model.nq)},
         {"nv", std::to_string(model.nv)},
         {"arrays", array_docs(options.algorithms, free_joints, dialect)},
+        {"frames", frame_declarations(model, dialect)},
         {"declarations", declarations}};
     if (dialect.c()) {
       std::map<std::string, std::string> values = header_values;
@@ -352,6 +416,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                                      {"NAME", upper(ns)},
                                      {"scalar", scalar},
                                      {"joint_names", joint_names},
+                                     {"frame_names", frame_names_definition(model, dialect)},
                                      {"joint_trig", emit_joint_trig(model, single, dialect)},
                                      {"definitions", definitions}})});
     } else {
@@ -373,10 +438,15 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
     if (calls_kernels)
       files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
-    files.push_back({ns + "_model.hpp", fill("model.hpp.in", {{"banner", code_banner},
-                                                             {"namespace", ns},
-                                                             {"records", model_records<T>(model)},
-                                                             {"gravity", gravity}})});
+    files.push_back(
+        {ns + "_model.hpp",
+         fill("model.hpp.in",
+              {{"banner", code_banner},
+               {"namespace", ns},
+               {"records", model_records<T>(model)},
+               {"frame_records", frame_records(model)},
+               {"frames_argument", model.frames.empty() ? "" : ", model_frames"},
+               {"gravity", gravity}})});
     files.push_back(
         {ns + "_check.cpp",
          fill("check.cpp.in",
@@ -458,6 +528,11 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
 }
 
 Generated generate(const Robot& robot, const GenerateOptions& options) {
+  for (const Algorithm& a : options.algorithms)
+    if (uses_frames(a) && robot.model.frames.empty())
+      throw InputError(fmt::format("{}: {} computes frames, and the model has none: name them "
+                                   "with --frames",
+                                   robot.path, a));
   const long long steps = crba_column_steps(robot.model);
   for (const Algorithm& a : options.algorithms) {
     const AlgorithmSpec<double>& spec = algorithm_spec(a);

@@ -66,6 +66,7 @@ struct Generated {
   std::string conditioning_text;      // as the banner records it
   std::vector<std::string> warnings;  // digits the generated scalar is expected to lose
   std::optional<Footprint> footprint;  // when measured
+  int nframes = 0;                     // frames the functions compute (0: no frame function)
 };
 
 /// Correct decimal digits below which dyngen warns that the generated scalar is not enough

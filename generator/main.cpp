@@ -120,7 +120,7 @@ std::string package_dir() {
 /// The options that choose the model, shared by generation and eval.
 struct ModelFlags {
   std::string gravity;
-  std::vector<std::string> locks;
+  std::vector<std::string> locks, frames;
   bool no_gravity = false, lock_massless = false, floating_base = false, mimic_independent = false;
   std::optional<double> snap;
 
@@ -137,6 +137,11 @@ struct ModelFlags {
     app.add_flag("--lock-massless", lock_massless, "lock every joint whose subtree has no mass");
     app.add_flag("--mimic-independent", mimic_independent,
                  "accept URDF mimic joints as independent joints (by default they are refused)");
+    app.add_option("--frames", frames,
+                   "comma-separated links whose frames the frame functions compute, in this "
+                   "order (default: the leaf links, such as tool flanges and feet)")
+        ->delimiter(',')
+        ->type_name("LINKS");
     app.add_option("--snap", snap,
                    "make rotation and axis entries within TOL of 0 or +-1, and inertia products "
                    "and offset components within TOL (relative) of 0, exact; changes the model "
@@ -152,6 +157,7 @@ struct ModelFlags {
     load.floating_base = floating_base;
     load.mimic_independent = mimic_independent;
     load.snap = snap;
+    load.frames = frames;
     if (no_gravity) load.gravity = Vec3<double>{0, 0, 0};
     if (!gravity.empty()) load.gravity = parse_gravity(gravity);
     return load;
@@ -165,6 +171,7 @@ struct ModelFlags {
     if (lock_massless) out += " --lock-massless";
     if (mimic_independent) out += " --mimic-independent";
     if (snap) out += fmt::format(" --snap {}", *snap);
+    if (!frames.empty()) out += " --frames " + comma_list(frames);
     return out;
   }
 };

@@ -227,6 +227,39 @@ std::string read_file(const std::string& path) {
   return text.str();
 }
 
+namespace {
+
+/// Keeps the frames of the links named (in that order), or without names those of the leaf
+/// links, the links no joint hangs from: tool flanges, feet, sensors.
+void select_frames(Model<double>& model, const ModelBuilder& builder,
+                   const std::vector<std::string>& names, const std::string& path) {
+  std::vector<Frame<double>> kept;
+  if (names.empty()) {
+    std::set<std::string> parents;
+    for (const JointSpec& joint : builder.joints()) parents.insert(joint.parent);
+    for (const Frame<double>& f : model.frames)
+      if (!parents.count(f.name)) kept.push_back(f);
+  }
+  for (const std::string& name : names) {
+    const auto it = std::find_if(model.frames.begin(), model.frames.end(),
+                                 [&](const Frame<double>& f) { return f.name == name; });
+    if (it == model.frames.end()) {
+      std::string links;
+      for (std::size_t k = 0; k < model.frames.size() && k < 40; ++k)
+        links += (k ? ", '" : "'") + model.frames[k].name + "'";
+      if (model.frames.size() > 40) links += fmt::format(" and {} more", model.frames.size() - 40);
+      throw InputError(fmt::format("{}: --frames: no link named '{}'; the links are {}", path,
+                                   name, links));
+    }
+    if (std::none_of(kept.begin(), kept.end(),
+                     [&](const Frame<double>& f) { return f.name == name; }))
+      kept.push_back(*it);
+  }
+  model.frames = kept;
+}
+
+}  // namespace
+
 Robot load_robot(const std::string& path, const LoadOptions& options) {
   return parse_robot(path, read_file(path), options);
 }
@@ -300,6 +333,7 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
         robot.model.nv, max_nv));
   check_mimics(robot, description.mimics, options.mimic_independent);
   if (options.snap) robot.snapped = snap(robot.model, *options.snap);
+  if (!options.all_frames) select_frames(robot.model, builder, options.frames, path);
   return robot;
 }
 

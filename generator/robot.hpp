@@ -46,6 +46,9 @@ struct LoadOptions {
   bool floating_base = false;           // the root link on a free joint
   bool mimic_independent = false;       // accept URDF mimic joints as independent joints
   std::optional<double> snap;           // snap constants within this tolerance (snap())
+  std::vector<std::string> frames;      // the links whose frames to keep, in this order
+                                        // (--frames); none named: the leaf links
+  bool all_frames = false;              // keep every link's frame
 };
 
 struct Robot {

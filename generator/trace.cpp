@@ -6,6 +6,19 @@
 
 namespace dyngen::gen {
 
+std::string extent_text(const Extent& e, const std::string& nq, const std::string& nv,
+                        const std::string& nframes) {
+  std::vector<std::string> factors;
+  if (e.per_frame) factors.push_back(nframes);
+  if (e.count != 1 || e.size == Extent::One) factors.push_back(std::to_string(e.count));
+  if (e.size == Extent::Nq) factors.push_back(nq);
+  if (e.size == Extent::Nv) factors.push_back(nv);
+  if (e.size == Extent::NvNv) factors.insert(factors.end(), {nv, nv});
+  std::string text;
+  for (const std::string& f : factors) text += (text.empty() ? "" : " * ") + f;
+  return text;
+}
+
 std::vector<Algorithm> algorithm_names() {
   std::vector<Algorithm> names;
   for (const AlgorithmSpec<double>& a : algorithm_table<double>()) names.emplace_back(a.name);
@@ -32,7 +45,7 @@ Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool si
   // the same conversion the check harness applies: double -> T -> constant nodes
   const Model<Sym<T>> m = model.cast<T>().template cast<Sym<T>>();
   Workspace<Sym<T>> ws(m);
-  const auto size = [&](const ArraySpec& a) { return extent_size(a.extent, model.nq, model.nv); };
+  const auto size = [&](const ArraySpec& a) { return extent_size(a.extent, model); };
 
   std::vector<std::vector<Sym<T>>> in, out;
   for (const ArraySpec& a : spec->inputs) {

@@ -62,7 +62,7 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
 Arrays sized(const std::vector<dyngen::ArraySpec>& arrays) {
   Arrays x;
   for (const dyngen::ArraySpec& a : arrays)
-    x.emplace_back(dyngen::extent_size(a.extent, model.nq, model.nv));
+    x.emplace_back(dyngen::extent_size(a.extent, model));
   return x;
 }
 

@@ -24,6 +24,31 @@ namespace {
 
 using namespace dyngen;
 
+// By default the model keeps the leaf links' frames (--frames names others, in its order)
+TEST(Frames, LeafLinksByDefaultOrThoseNamed) {
+  const std::string path = test::model_path("ur5.urdf");
+  std::set<std::string> leaves;
+  for (const Frame<double>& f : gen::load_robot(path).model.frames) leaves.insert(f.name);
+  // ur5.urdf's links that no joint hangs from: the flange (ee_link), ROS's tool0 and base
+  EXPECT_EQ(leaves, (std::set<std::string>{"ee_link", "tool0", "base"}));
+  std::vector<std::string> names;
+  gen::LoadOptions options;
+  options.frames = {"wrist_1_link", "base_link", "wrist_1_link"};
+  names.clear();
+  for (const Frame<double>& f : gen::load_robot(path, options).model.frames)
+    names.push_back(f.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"wrist_1_link", "base_link"}));
+  options.frames = {"tool"};
+  try {
+    gen::load_robot(path, options);
+    ADD_FAILURE() << "loaded";
+  } catch (const gen::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--frames: no link named 'tool'; the links are 'world'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Frames, EveryUrdfLinkIsAFrameOnTheBodyItMovesWith) {
   const std::string path = test::model_path("ur5.urdf");
   std::ifstream in(path);
@@ -33,7 +58,9 @@ TEST(Frames, EveryUrdfLinkIsAFrameOnTheBodyItMovesWith) {
   for (auto it = std::sregex_iterator(urdf.begin(), urdf.end(), link); it != std::sregex_iterator();
        ++it)
     links.insert((*it)[1]);
-  const Model<double> model = gen::load_robot(path).model;
+  gen::LoadOptions all;
+  all.all_frames = true;
+  const Model<double> model = gen::load_robot(path, all).model;
   std::set<std::string> frames;
   for (const Frame<double>& f : model.frames) frames.insert(f.name);
   EXPECT_EQ(frames, links);
@@ -73,13 +100,17 @@ std::vector<Case> cases() {
   std::vector<Case> all;
   all.push_back({"spatial_chain_7", [] { return test::make_random_chain(7, 77, false); }});
   all.push_back({"all_joints", [] {
-                   return gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
+                   gen::LoadOptions options;
+                   options.all_frames = true;
+                   return gen::load_robot(test::model_path("coverage/all_joints.urdf"), options)
+                       .model;
                  }});
   for (const std::string robot : {"ur5", "solo12", "atlas"})
     for (const bool floating : {false, true})
       all.push_back({robot + (floating ? "_floating" : ""), [=] {
                        gen::LoadOptions options;
                        options.floating_base = floating;
+                       options.all_frames = true;
                        return gen::load_robot(test::model_path(robot + ".urdf"), options).model;
                      }});
   return all;

@@ -46,7 +46,7 @@ void expect_no_allocation(const Model<double>& model_double, const std::string& 
                                        : in.name == "v" ? s.qd
                                        : in.name == "a" ? s.qdd
                                                         : s.tau));
-    for (const ArraySpec& out : a.outputs) y.emplace_back(extent_size(out.extent, model.nq, model.nv));
+    for (const ArraySpec& out : a.outputs) y.emplace_back(extent_size(out.extent, model));
     const std::vector<std::span<const S>> in(x.begin(), x.end());
     const std::vector<std::span<S>> out(y.begin(), y.end());
     test::AllocationCounter c;

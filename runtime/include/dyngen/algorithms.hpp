@@ -11,50 +11,99 @@
 #include "dyngen/aba.hpp"
 #include "dyngen/aba_derivatives.hpp"
 #include "dyngen/crba.hpp"
+#include "dyngen/frames.hpp"
 #include "dyngen/minv.hpp"
 #include "dyngen/rnea.hpp"
 #include "dyngen/rnea_derivatives.hpp"
 
 namespace dyngen {
 
-/// The length of an array for a model: nq, nv or nv * nv.
-enum class Extent { Nq, Nv, NvNv };
+/// The length of an array for a model: `count` times 1, nq, nv or nv * nv, and times the
+/// number of frames for an array with an entry per frame (a frame's Jacobian is 6 x nv).
+struct Extent {
+  enum Size { One, Nq, Nv, NvNv };
+  Size size = One;
+  int count = 1;
+  bool per_frame = false;
+};
 
-inline std::size_t extent_size(Extent e, int nq, int nv) {
+inline std::size_t extent_size(const Extent& e, int nq, int nv, int nframes) {
   const std::size_t n = static_cast<std::size_t>(nv);
-  return e == Extent::Nq ? static_cast<std::size_t>(nq) : e == Extent::Nv ? n : n * n;
+  const std::size_t size = e.size == Extent::One  ? 1
+                           : e.size == Extent::Nq ? static_cast<std::size_t>(nq)
+                           : e.size == Extent::Nv ? n
+                                                  : n * n;
+  return size * static_cast<std::size_t>(e.count) *
+         (e.per_frame ? static_cast<std::size_t>(nframes) : 1);
 }
 
+template <class S>
+std::size_t extent_size(const Extent& e, const Model<S>& model) {
+  return extent_size(e, model.nq, model.nv, static_cast<int>(model.frames.size()));
+}
+
+inline constexpr Extent length_nq{Extent::Nq}, length_nv{Extent::Nv}, length_nv_nv{Extent::NvNv};
+
 /// An array of an algorithm's signature: its name (the same name means the same quantity in
-/// every algorithm), length and meaning, as the generated header documents it.
+/// every algorithm), length and meaning, as the generated header documents it. Per frame f of
+/// model.frames, in their order.
 struct ArraySpec {
   std::string_view name;
   Extent extent;
   std::string_view meaning;
 };
 
-inline constexpr ArraySpec q_array{"q", Extent::Nq, "joint positions: rad (revolute), m (prismatic)"};
-inline constexpr ArraySpec v_array{"v", Extent::Nv, "joint velocities"};
-inline constexpr ArraySpec a_array{"a", Extent::Nv, "joint accelerations (input of rnea)"};
-inline constexpr ArraySpec tau_array{"tau", Extent::Nv, "joint forces: N m (revolute), N (prismatic)"};
-inline constexpr ArraySpec qdd_array{"qdd", Extent::Nv, "joint accelerations (output of aba)"};
-inline constexpr ArraySpec M_array{"M", Extent::NvNv,
+inline constexpr ArraySpec q_array{"q", length_nq, "joint positions: rad (revolute), m (prismatic)"};
+inline constexpr ArraySpec v_array{"v", length_nv, "joint velocities"};
+inline constexpr ArraySpec a_array{"a", length_nv, "joint accelerations (input of rnea)"};
+inline constexpr ArraySpec tau_array{"tau", length_nv, "joint forces: N m (revolute), N (prismatic)"};
+inline constexpr ArraySpec qdd_array{"qdd", length_nv, "joint accelerations (output of aba)"};
+inline constexpr ArraySpec M_array{"M", length_nv_nv,
                                    "joint-space mass matrix, row-major, both triangles: M[i * nv + j]"};
-inline constexpr ArraySpec g_array{"g", Extent::Nv, "generalised gravity: tau at v = 0, a = 0"};
+inline constexpr ArraySpec g_array{"g", length_nv, "generalised gravity: tau at v = 0, a = 0"};
 inline constexpr ArraySpec dtau_dq_array{
-    "dtau_dq", Extent::NvNv,
+    "dtau_dq", length_nv_nv,
     "d tau / dq, row-major: dtau_dq[i * nv + j] = d tau_i / dq_j (free joints: tangent directions)"};
-inline constexpr ArraySpec dtau_dv_array{"dtau_dv", Extent::NvNv,
+inline constexpr ArraySpec dtau_dv_array{"dtau_dv", length_nv_nv,
                                          "d tau / dv, row-major: dtau_dv[i * nv + j] = d tau_i / dv_j"};
-inline constexpr ArraySpec Minv_array{"Minv", Extent::NvNv,
+inline constexpr ArraySpec Minv_array{"Minv", length_nv_nv,
                                       "inverse of the mass matrix, row-major, both triangles"};
 inline constexpr ArraySpec dqdd_dq_array{
-    "dqdd_dq", Extent::NvNv,
+    "dqdd_dq", length_nv_nv,
     "d qdd / dq, row-major: dqdd_dq[i * nv + j] = d qdd_i / dq_j (free joints: tangent directions)"};
-inline constexpr ArraySpec dqdd_dv_array{"dqdd_dv", Extent::NvNv,
+inline constexpr ArraySpec dqdd_dv_array{"dqdd_dv", length_nv_nv,
                                          "d qdd / dv, row-major: dqdd_dv[i * nv + j] = d qdd_i / dv_j"};
-inline constexpr ArraySpec h_array{"h", Extent::Nv,
+inline constexpr ArraySpec h_array{"h", length_nv,
                                    "nonlinear effects (Coriolis, centrifugal, gravity): tau at a = 0"};
+inline constexpr ArraySpec R_array{
+    "R", {Extent::One, 9, true},
+    "each frame's rotation, row-major: R[9 f + 3 i + j]; its columns are the frame's axes in "
+    "base coordinates"};
+inline constexpr ArraySpec p_array{"p", {Extent::One, 3, true},
+                                   "each frame's origin in base coordinates: p[3 f + i]"};
+inline constexpr ArraySpec J_array{
+    "J", {Extent::Nv, 6, true},
+    "each frame's Jacobian in base axes at the frame's origin, 6 x nv row-major, linear rows "
+    "first: J[(6 f + i) * nv + j]"};
+inline constexpr ArraySpec J_local_array{
+    "J_local", {Extent::Nv, 6, true},
+    "each frame's Jacobian in its own axes, 6 x nv row-major, linear rows first"};
+inline constexpr ArraySpec Jdot_v_array{
+    "Jdot_v", {Extent::One, 6, true},
+    "each frame's acceleration at qdd = 0 (of its origin, then angular), base axes: "
+    "Jdot_v[6 f + i]; the frame accelerates by J qdd + Jdot_v"};
+inline constexpr ArraySpec Jdot_v_local_array{
+    "Jdot_v_local", {Extent::One, 6, true},
+    "each frame's acceleration at qdd = 0 in its own axes: J_local qdd + Jdot_v_local"};
+inline constexpr ArraySpec c_array{"c", {Extent::One, 3}, "centre of mass, base coordinates"};
+inline constexpr ArraySpec Jc_array{"Jc", {Extent::Nv, 3},
+                                    "Jacobian of the centre of mass, 3 x nv row-major"};
+inline constexpr ArraySpec Ag_array{
+    "Ag", {Extent::Nv, 6},
+    "centroidal momentum matrix, 6 x nv row-major: linear momentum, then angular momentum "
+    "about the centre of mass, base axes"};
+inline constexpr ArraySpec hg_array{"hg", {Extent::One, 6},
+                                    "centroidal momentum Ag v (linear, then angular)"};
 
 template <class S>
 using AlgorithmInputs = std::span<const std::span<const S>>;
@@ -126,6 +175,51 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        Growth::Dense, true,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          aba_derivatives<S>(m, ws, in[0], in[1], in[2], out[0], out[1], out[2]);
+       }},
+      {"frame_placements",
+       "Placements of the frames: rotation R and origin p in base coordinates.", {q_array},
+       {R_array, p_array},
+       Growth::Linear, false,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         frame_placements<S>(m, ws, in[0], out[0], out[1]);
+       }},
+      {"frame_jacobians", "Jacobians of the frames, in base axes at each frame's origin.",
+       {q_array}, {J_array},
+       Growth::ColumnSteps, false,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         frame_jacobians<S>(m, ws, in[0], JacobianAxes::World, out[0]);
+       }},
+      {"frame_jacobians_local", "Jacobians of the frames, in each frame's own axes.",
+       {q_array}, {J_local_array},
+       Growth::ColumnSteps, false,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         frame_jacobians<S>(m, ws, in[0], JacobianAxes::Local, out[0]);
+       }},
+      {"frame_accelerations",
+       "Bias accelerations Jdot v of the frames at qdd = 0, in base axes.",
+       {q_array, v_array}, {Jdot_v_array},
+       Growth::Linear, false,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         frame_bias_accelerations<S>(m, ws, in[0], in[1], JacobianAxes::World, out[0]);
+       }},
+      {"frame_accelerations_local",
+       "Bias accelerations Jdot v of the frames at qdd = 0, in each frame's own axes.",
+       {q_array, v_array}, {Jdot_v_local_array},
+       Growth::Linear, false,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         frame_bias_accelerations<S>(m, ws, in[0], in[1], JacobianAxes::Local, out[0]);
+       }},
+      {"com", "Centre of mass c(q) and its Jacobian.", {q_array}, {c_array, Jc_array},
+       Growth::Linear, false,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         com<S>(m, ws, in[0], out[0], out[1]);
+       }},
+      {"centroidal",
+       "Centroidal momentum matrix Ag(q) and momentum hg = Ag v (Orin, Goswami & Lee 2013).",
+       {q_array, v_array}, {Ag_array, hg_array},
+       Growth::Linear, false,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         centroidal<S>(m, ws, in[0], in[1], out[0], out[1]);
        }},
   };
   return table;

@@ -9,6 +9,7 @@
 #include <span>
 
 #include "dyngen/joint.hpp"
+#include "dyngen/trace_hook.hpp"
 #include "dyngen/workspace.hpp"
 
 namespace dyngen {
@@ -23,6 +24,7 @@ namespace detail {
 template <class S>
 void body_placements(const Model<S>& model, Workspace<S>& ws, std::span<const S> q) {
   for (int i = 0; i < model.nbodies; ++i) {
+    TraceHook<S>::enter(i, Pass::Kinematics);
     const int p = model.parent[i];
     ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
     ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
@@ -45,6 +47,7 @@ void frame_placements(const Model<S>& model, Workspace<S>& ws, std::span<const S
                       std::span<S> R, std::span<S> p) {
   detail::body_placements(model, ws, q);
   for (int f = 0; f < static_cast<int>(model.frames.size()); ++f) {
+    TraceHook<S>::enter(model.frames[f].body, Pass::Frames);
     const Xform<S> X = detail::frame_transform(model, ws, f);
     const Mat3<S>& E = X.E;
     S* Rf = &R[9 * f];
@@ -67,8 +70,10 @@ void frame_jacobians(const Model<S>& model, Workspace<S>& ws, std::span<const S>
   for (int f = 0; f < static_cast<int>(model.frames.size()); ++f) {
     S* Jf = &J[6 * static_cast<std::size_t>(f) * nv];
     for (int e = 0; e < 6 * nv; ++e) Jf[e] = S(0);
+    TraceHook<S>::enter(model.frames[f].body, Pass::Frames);
     const Xform<S> X = detail::frame_transform(model, ws, f);
     for (int j = model.frames[f].body; j >= 0; j = model.parent[j]) {
+      TraceHook<S>::enter(j, Pass::JacobianColumns);
       for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
         const Motion<S> s0 = apply_motion_inv(ws.X0[j], joint_column(model, j, d));
         Vec3<S> lin = s0.lin + cross(s0.ang, X.r), ang = s0.ang;
@@ -90,6 +95,7 @@ template <class S>
 void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                               std::span<const S> v, JacobianAxes axes, std::span<S> out) {
   for (int i = 0; i < model.nbodies; ++i) {
+    TraceHook<S>::enter(i, Pass::Velocity);
     const int p = model.parent[i];
     ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
     const Motion<S> vJ = joint_motion(model, i, &v[model.v_index[i]]);
@@ -106,6 +112,7 @@ void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span
   for (int f = 0; f < static_cast<int>(model.frames.size()); ++f) {
     S* o = &out[6 * f];
     const int b = model.frames[f].body;
+    TraceHook<S>::enter(b, Pass::Frames);
     if (b < 0) {
       for (int k = 0; k < 6; ++k) o[k] = S(0);
       continue;
@@ -126,9 +133,13 @@ namespace detail {
 /// body_placements; returns the total.
 template <class S>
 RigidInertia<S> subtree_inertias_in_base(const Model<S>& model, Workspace<S>& ws) {
-  for (int i = 0; i < model.nbodies; ++i) ws.Ic[i] = apply_inertia_T(ws.X0[i], model.I[i]);
+  for (int i = 0; i < model.nbodies; ++i) {
+    TraceHook<S>::enter(i, Pass::CompositeInertia);
+    ws.Ic[i] = apply_inertia_T(ws.X0[i], model.I[i]);
+  }
   RigidInertia<S> total{};
   for (int i = model.nbodies - 1; i >= 0; --i) {
+    TraceHook<S>::enter(i, Pass::CompositeInertia);
     if (model.parent[i] >= 0) ws.Ic[model.parent[i]] = ws.Ic[model.parent[i]] + ws.Ic[i];
     else total = total + ws.Ic[i];
   }
@@ -148,7 +159,8 @@ void com(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
   const S inverse_mass = S(1) / total.m;
   c[0] = total.h.x * inverse_mass, c[1] = total.h.y * inverse_mass, c[2] = total.h.z * inverse_mass;
   const int nv = model.nv;
-  for (int j = 0; j < model.nbodies; ++j)
+  for (int j = 0; j < model.nbodies; ++j) {
+    TraceHook<S>::enter(j, Pass::JacobianColumns);
     for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
       const Motion<S> s0 = apply_motion_inv(ws.X0[j], joint_column(model, j, d));
       const Vec3<S> column =
@@ -156,6 +168,7 @@ void com(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
       const int k = model.v_index[j] + d;
       Jc[k] = column.x, Jc[nv + k] = column.y, Jc[2 * nv + k] = column.z;
     }
+  }
 }
 
 /// The centroidal momentum matrix A (6 x nv, row-major) and momentum h = A v at q, v (Orin,
@@ -170,7 +183,8 @@ void centroidal(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
   const Vec3<S> c = scale(total.h, S(1) / total.m);
   const int nv = model.nv;
   for (int e = 0; e < 6; ++e) h[e] = S(0);
-  for (int j = 0; j < model.nbodies; ++j)
+  for (int j = 0; j < model.nbodies; ++j) {
+    TraceHook<S>::enter(j, Pass::JacobianColumns);
     for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
       const Force<S> m0 = mul(ws.Ic[j], apply_motion_inv(ws.X0[j], joint_column(model, j, d)));
       const Vec3<S> angular = m0.ang - cross(c, m0.lin);
@@ -181,6 +195,7 @@ void centroidal(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
         h[row] = h[row] + column[row] * v[k];
       }
     }
+  }
 }
 
 }  // namespace dyngen

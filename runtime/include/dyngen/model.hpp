@@ -142,9 +142,18 @@ struct BodyRecord {
   double I[6];  // xx, yy, zz, xy, xz, yz
 };
 
+/// One frame of a model as plain numbers.
+struct FrameRecord {
+  const char* name;
+  int body;
+  double E[9];  // row-major
+  double r[3];
+};
+
 /// Rebuilds a model from its records (the inverse of model_records()).
 inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
-                                        const double (&gravity)[3]) {
+                                        const double (&gravity)[3],
+                                        std::span<const FrameRecord> frames = {}) {
   Model<double> m;
   m.nbodies = static_cast<int>(bodies.size());
   m.gravity = {gravity[0], gravity[1], gravity[2]};
@@ -162,6 +171,10 @@ inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
     m.body_name.emplace_back(b.body_name);
     m.joint_name.emplace_back(b.joint_name);
   }
+  for (const FrameRecord& f : frames)
+    m.frames.push_back({f.name, f.body,
+                        {{f.E[0], f.E[1], f.E[2], f.E[3], f.E[4], f.E[5], f.E[6], f.E[7], f.E[8]},
+                         {f.r[0], f.r[1], f.r[2]}}});
   return m;
 }
 

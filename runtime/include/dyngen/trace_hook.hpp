@@ -21,6 +21,8 @@ enum class Pass : std::uint8_t {
   Acceleration,        // ABA: joint accelerations
   Pairs,               // derivatives: the entries of pairs of joints (a kernel)
   Product,             // derivatives: a matrix product (a kernel)
+  Frames,              // frames: the placements and accelerations of the frames on a body
+  JacobianColumns,     // frames, centre of mass, centroidal momentum: a joint's columns
 };
 
 inline const char* pass_name(Pass p) {
@@ -35,6 +37,8 @@ inline const char* pass_name(Pass p) {
     case Pass::Acceleration: return "acceleration pass";
     case Pass::Pairs: return "pairs of joints";
     case Pass::Product: return "matrix product";
+    case Pass::Frames: return "its frames";
+    case Pass::JacobianColumns: return "its joint's Jacobian columns";
   }
   return "?";
 }

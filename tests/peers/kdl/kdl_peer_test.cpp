@@ -187,6 +187,7 @@ TEST_P(KdlPeer, FramePlacementsAndJacobians) {
     SCOPED_TRACE(floating_base ? "floating base" : "fixed base");
     gen::LoadOptions options = file.options;
     options.floating_base = floating_base;
+    options.all_frames = true;
     const gen::Robot robot = gen::load_robot(file.path, options);
     const Model<double>& model = robot.model;
     const KDL::Tree tree = load_tree(file.path, robot.locked, floating_base);

@@ -95,7 +95,7 @@ class ExactDynamics {
     mpfr::mpreal::set_default_prec(bits_);
     std::vector<std::vector<Exact>> in, out;
     for (const std::span<const double>& x : inputs) in.push_back(widen(x));
-    for (const ArraySpec& y : spec->outputs) out.emplace_back(extent_size(y.extent, model_.nq, model_.nv));
+    for (const ArraySpec& y : spec->outputs) out.emplace_back(extent_size(y.extent, model_));
     const std::vector<std::span<const Exact>> in_spans(in.begin(), in.end());
     const std::vector<std::span<Exact>> out_spans(out.begin(), out.end());
     spec->call(model_, ws_, in_spans, out_spans);
