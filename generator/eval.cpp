@@ -13,6 +13,7 @@
 #include "dyngen/aba.hpp"
 #include "dyngen/aba_derivatives.hpp"
 #include "dyngen/crba.hpp"
+#include "dyngen/frames.hpp"
 #include "dyngen/minv.hpp"
 #include "dyngen/rnea.hpp"
 #include "dyngen/rnea_derivatives.hpp"
@@ -142,7 +143,7 @@ std::vector<EvalState> read_states(const Model<double>& model, const std::string
 }
 
 void write_results(const Model<double>& model, const std::vector<EvalState>& states,
-                   std::FILE* out, bool derivatives) {
+                   std::FILE* out, bool derivatives, bool frames) {
   const std::size_t n = static_cast<std::size_t>(model.nv);
   if (derivatives) {
     if (model.nv > Workspace<double>::max_matrix_nv)
@@ -155,6 +156,8 @@ void write_results(const Model<double>& model, const std::vector<EvalState>& sta
   }
   Workspace<double> ws(model);
   std::vector<double> tau, qdd, M, Minv, dtau_dq, dtau_dv, dqdd_dq, dqdd_dv;
+  const std::size_t nframes = model.frames.size();
+  std::vector<double> R(9 * nframes), p(3 * nframes), J(6 * nframes * n);
   std::string head =
       nlohmann::json{{"joints", velocity_names(model)}, {"nq", model.nq}, {"nv", model.nv}}.dump(2);
   head.resize(head.size() - 2);  // "\n}": the results follow
@@ -196,13 +199,35 @@ void write_results(const Model<double>& model, const std::vector<EvalState>& sta
     }
     check_finite(qdd, s, "qdd");
     check_finite(tau, s, "tau");
-    // the keys in nlohmann::json's order: M, Minv, dqdd_dq, dqdd_dv, dtau_dq, dtau_dv, qdd, tau
+    // the keys in nlohmann::json's order: M, Minv, dqdd_dq, dqdd_dv, dtau_dq, dtau_dv, frames,
+    // qdd, tau
     std::string text = fmt::format("{}\n    {{", s == 0 ? "" : ",") + matrix("M", M, s, true);
     if (derivatives) text += matrix("Minv", Minv, s, false);
     if (derivatives && with_tau)
       text += matrix("dqdd_dq", dqdd_dq, s, false) + matrix("dqdd_dv", dqdd_dv, s, false);
     if (derivatives && with_a)
       text += matrix("dtau_dq", dtau_dq, s, false) + matrix("dtau_dv", dtau_dv, s, false);
+    if (frames) {
+      frame_placements<double>(model, ws, state.q, R, p);
+      frame_jacobians<double>(model, ws, state.q, JacobianAxes::World, J);
+      check_finite(R, s, "frames\" R");
+      check_finite(J, s, "frames\" J");
+      nlohmann::json object = nlohmann::json::object();
+      for (std::size_t f = 0; f < nframes; ++f) {
+        nlohmann::json rows = nlohmann::json::array(), jacobian = nlohmann::json::array();
+        for (std::size_t i = 0; i < 3; ++i)
+          rows.push_back(std::vector<double>(&R[9 * f + 3 * i], &R[9 * f + 3 * i + 3]));
+        for (std::size_t i = 0; i < 6; ++i)
+          jacobian.push_back(std::vector<double>(&J[(6 * f + i) * n], &J[(6 * f + i + 1) * n]));
+        object[model.frames[f].name] = {
+            {"J", jacobian}, {"R", rows}, {"p", std::vector<double>(&p[3 * f], &p[3 * f + 3])}};
+      }
+      // dump(2) of the object, six spaces deep like "M"
+      std::string dumped = object.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+      for (std::size_t at = 0; (at = dumped.find('\n', at)) != std::string::npos; at += 7)
+        dumped.insert(at + 1, 6, ' ');
+      text += ",\n      \"frames\": " + dumped;
+    }
     if (with_tau) text += ",\n      \"qdd\": " + array_text(qdd, 6);
     if (with_a) text += ",\n      \"tau\": " + array_text(tau, 6);
     put(out, text + "\n    }");

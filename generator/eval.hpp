@@ -32,11 +32,13 @@ std::vector<EvalState> read_states(const Model<double>& model, const std::string
 /// (ABA, when tau is given), "tau" (RNEA, when a is given)}]} to `out`, as nlohmann::json's
 /// dump(2) would, one result at a time as it is computed. With derivatives, each result also
 /// has "Minv" and, when tau is given, "dqdd_dq" and "dqdd_dv" (aba_derivatives), when a is
-/// given, "dtau_dq" and "dtau_dv" (rnea_derivatives), each a list of rows. Throws InputError
+/// given, "dtau_dq" and "dtau_dv" (rnea_derivatives), each a list of rows. With frames, each
+/// result has "frames": {NAME: {"J": 6 rows of nv (base axes at the frame's origin, linear rows
+/// first), "R": 3 rows, "p": [x, y, z]}} for each of the model's frames. Throws InputError
 /// naming the state and the output that is not finite (before writing that state's results), or
 /// for derivatives of a robot without ABA's pivots or above Workspace::max_matrix_nv, and
 /// FileError when `out` (standard output) cannot be written.
 void write_results(const Model<double>& model, const std::vector<EvalState>& states,
-                   std::FILE* out, bool derivatives = false);
+                   std::FILE* out, bool derivatives = false, bool frames = false);
 
 }  // namespace dyngen::gen

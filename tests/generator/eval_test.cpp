@@ -17,6 +17,7 @@
 
 #include "dyngen/aba.hpp"
 #include "dyngen/crba.hpp"
+#include "dyngen/frames.hpp"
 #include "dyngen/rnea.hpp"
 
 #include "eval.hpp"
@@ -35,7 +36,7 @@ const std::string models = DYNGEN_TEST_MODELS;
 
 /// What dyngen eval writes for the states, as text: read_states and write_results in memory.
 std::string eval_text(const dyngen::Model<double>& model, const json& states,
-                      bool derivatives = false) {
+                      bool derivatives = false, bool frames = false) {
   std::istringstream in(states.dump());
   const std::vector<EvalState> read = read_states(model, in, "<test>");
   char* buffer = nullptr;
@@ -43,7 +44,7 @@ std::string eval_text(const dyngen::Model<double>& model, const json& states,
   std::FILE* out = open_memstream(&buffer, &size);
   std::string error;
   try {
-    write_results(model, read, out, derivatives);
+    write_results(model, read, out, derivatives, frames);
   } catch (const InputError& e) {
     error = e.what();
   }
@@ -215,6 +216,41 @@ TEST(Eval, WritesTheResultsAsTheirJsonTreeWouldBePrinted) {
                       {"nv", 6},
                       {"results", json::array()}};
   EXPECT_EQ(eval_text(model, json::array()), empty.dump(2) + "\n");
+}
+
+// --frames: each frame's R, p and base-axes J from the runtime, printed as dump(2) prints them
+TEST(Eval, FramesArePrintedAsTheirJsonTreeWouldBe) {
+  LoadOptions options;
+  options.frames = {"tool0", "wrist_1_link"};
+  options.floating_base = true;
+  const dyngen::Model<double> model = load_robot(models + "/ur5.urdf", options).model;
+  const json states = json::array({state(model, 0, "a")});
+  const std::vector<double> q = states[0]["q"];
+  dyngen::Workspace<double> ws(model);
+  const std::size_t nv = static_cast<std::size_t>(model.nv);
+  std::vector<double> M(nv * nv), tau(nv), R(18), p(6), J(12 * nv);
+  dyngen::crba<double>(model, ws, q, M);
+  dyngen::rnea<double>(model, ws, q, states[0]["v"].get<std::vector<double>>(),
+                       states[0]["a"].get<std::vector<double>>(), tau);
+  dyngen::frame_placements<double>(model, ws, q, R, p);
+  dyngen::frame_jacobians<double>(model, ws, q, dyngen::JacobianAxes::World, J);
+  json r = {{"tau", tau}};
+  for (std::size_t i = 0; i < nv; ++i)
+    r["M"].push_back(std::vector<double>(&M[nv * i], &M[nv * i + nv]));
+  for (std::size_t f = 0; f < 2; ++f) {
+    json& frame = r["frames"][model.frames[f].name];
+    for (std::size_t i = 0; i < 3; ++i)
+      frame["R"].push_back(std::vector<double>(&R[9 * f + 3 * i], &R[9 * f + 3 * i + 3]));
+    frame["p"] = std::vector<double>(&p[3 * f], &p[3 * f + 3]);
+    for (std::size_t i = 0; i < 6; ++i)
+      frame["J"].push_back(std::vector<double>(&J[(6 * f + i) * nv], &J[(6 * f + i + 1) * nv]));
+  }
+  const json tree = {{"joints", dyngen::velocity_names(model)},
+                     {"nq", model.nq},
+                     {"nv", model.nv},
+                     {"results", json::array({r})}};
+  EXPECT_EQ(eval_text(model, states, false, true), tree.dump(2) + "\n");
+  EXPECT_EQ(json::parse(eval_text(model, states, false, true))["results"][0]["frames"].size(), 2u);
 }
 
 // --derivatives against central differences of eval's own tau and qdd (what a user can do in a
