@@ -182,6 +182,44 @@ TEST_P(FrameJacobians, AreTheDerivativesOfThePlacements) {
   EXPECT_GT(largest, 0.1);
 }
 
+// J v is the frame's velocity from kinematics.hpp's velocity pass: its body's spatial velocity
+// in base coordinates, taken to the frame's origin
+TEST_P(FrameJacobians, TimesVAreTheVelocitiesOfTheVelocityPass) {
+  Model<double> model = GetParam().make();
+  if (model.frames.empty())
+    for (int i = 0; i < model.nbodies; ++i)
+      model.frames.push_back({"frame" + std::to_string(i), i,
+                              {{0, 0.6, 0.8, 1, 0, 0, 0, 0.8, -0.6}, {0.1, -0.2, 0.3}}});
+  const int nv = model.nv, nf = static_cast<int>(model.frames.size());
+  Workspace<double> ws(model);
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  std::vector<double> q(model.nq), v(nv), R(9 * nf), p(3 * nf), J(6 * nf * nv);
+  for (double& x : q) x = u(rng);
+  for (double& x : v) x = u(rng);
+  normalize_configuration<double>(model, q);
+  frame_placements<double>(model, ws, q, R, p);
+  frame_jacobians<double>(model, ws, q, JacobianAxes::World, J);
+  forward_kinematics<double>(model, ws, q, v);
+  double worst = 0, largest = 0;
+  for (int f = 0; f < nf; ++f) {
+    const int b = model.frames[f].body;
+    Motion<double> v0{};
+    if (b >= 0) v0 = apply_motion_inv(ws.X0[b], ws.v[b]);
+    const Vec3<double> origin{p[3 * f], p[3 * f + 1], p[3 * f + 2]};
+    const Vec3<double> lin = v0.lin + cross(v0.ang, origin);
+    const double expected[6] = {lin.x, lin.y, lin.z, v0.ang.x, v0.ang.y, v0.ang.z};
+    for (int row = 0; row < 6; ++row) {
+      double Jv = 0;
+      for (int c = 0; c < nv; ++c) Jv += J[(6 * static_cast<std::size_t>(f) + row) * nv + c] * v[c];
+      worst = std::max(worst, std::abs(Jv - expected[row]));
+      largest = std::max(largest, std::abs(expected[row]));
+    }
+  }
+  EXPECT_LT(worst, 1e-12 * nv * std::max(1.0, largest)) << "largest entry " << largest;
+  EXPECT_GT(largest, 0.1);
+}
+
 // Jdot v at qdd = 0 is the time derivative of J(q(t)) v along q(t) = q (+) t v, in the base's
 // axes; in the frame's own it is that derivative expressed in them (R^T Jdot_world v), so that
 // J_local qdd + Jdot_v_local is the frame's acceleration in its own axes.
