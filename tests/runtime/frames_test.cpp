@@ -120,6 +120,16 @@ void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
 
 class FrameJacobians : public ::testing::TestWithParam<Case> {};
 
+/// The model, or for the random chain, which has no URDF, the chain with a frame on each body,
+/// off its origin and turned.
+Model<double> with_frames(Model<double> model) {
+  if (model.frames.empty())
+    for (int i = 0; i < model.nbodies; ++i)
+      model.frames.push_back({"frame" + std::to_string(i), i,
+                              {{0, 0.6, 0.8, 1, 0, 0, 0, 0.8, -0.6}, {0.1, -0.2, 0.3}}});
+  return model;
+}
+
 /// The angular velocity w with exp([w] 2h) = B A^T (both 3x3), for small 2h.
 Eigen::Vector3d rotation_rate(const Eigen::Matrix3d& after, const Eigen::Matrix3d& before,
                               double two_h) {
@@ -128,12 +138,7 @@ Eigen::Vector3d rotation_rate(const Eigen::Matrix3d& after, const Eigen::Matrix3
 }
 
 TEST_P(FrameJacobians, AreTheDerivativesOfThePlacements) {
-  Model<double> model = GetParam().make();
-  // the random chain has no URDF: a frame on each body, off its origin and turned
-  if (model.frames.empty())
-    for (int i = 0; i < model.nbodies; ++i)
-      model.frames.push_back({"frame" + std::to_string(i), i,
-                              {{0, 0.6, 0.8, 1, 0, 0, 0, 0.8, -0.6}, {0.1, -0.2, 0.3}}});
+  const Model<double> model = with_frames(GetParam().make());
   const int nv = model.nv, nf = static_cast<int>(model.frames.size());
   ASSERT_GT(nf, 0);
   Workspace<double> ws(model);
@@ -185,11 +190,7 @@ TEST_P(FrameJacobians, AreTheDerivativesOfThePlacements) {
 // J v is the frame's velocity from kinematics.hpp's velocity pass: its body's spatial velocity
 // in base coordinates, taken to the frame's origin
 TEST_P(FrameJacobians, TimesVAreTheVelocitiesOfTheVelocityPass) {
-  Model<double> model = GetParam().make();
-  if (model.frames.empty())
-    for (int i = 0; i < model.nbodies; ++i)
-      model.frames.push_back({"frame" + std::to_string(i), i,
-                              {{0, 0.6, 0.8, 1, 0, 0, 0, 0.8, -0.6}, {0.1, -0.2, 0.3}}});
+  const Model<double> model = with_frames(GetParam().make());
   const int nv = model.nv, nf = static_cast<int>(model.frames.size());
   Workspace<double> ws(model);
   std::mt19937_64 rng(8);
@@ -224,11 +225,7 @@ TEST_P(FrameJacobians, TimesVAreTheVelocitiesOfTheVelocityPass) {
 // axes; in the frame's own it is that derivative expressed in them (R^T Jdot_world v), so that
 // J_local qdd + Jdot_v_local is the frame's acceleration in its own axes.
 TEST_P(FrameJacobians, BiasAccelerationsAreTheDerivativeOfJAlongTheMotion) {
-  Model<double> model = GetParam().make();
-  if (model.frames.empty())
-    for (int i = 0; i < model.nbodies; ++i)
-      model.frames.push_back({"frame" + std::to_string(i), i,
-                              {{0, 0.6, 0.8, 1, 0, 0, 0, 0.8, -0.6}, {0.1, -0.2, 0.3}}});
+  const Model<double> model = with_frames(GetParam().make());
   const int nv = model.nv, nf = static_cast<int>(model.frames.size());
   Workspace<double> ws(model);
   std::mt19937_64 rng(6);
