@@ -25,6 +25,8 @@ struct Extent {
   Size size = One;
   int count = 1;
   bool per_frame = false;
+
+  friend bool operator==(const Extent&, const Extent&) = default;
 };
 
 inline std::size_t extent_size(const Extent& e, int nq, int nv, int nframes) {
