@@ -66,9 +66,9 @@ struct Dialect {
   const char* no_throw() const { return c() ? "" : " noexcept"; }
   /// How a _trig function and joint_trig reach the trig they are given.
   const char* trig_member() const { return c() ? "trig->" : "trig."; }
-  std::string trig_parameter(bool writable) const {
-    return c() ? fmt::format("{}{}_JointTrig* trig", writable ? "" : "const ", name)
-               : fmt::format("{}JointTrig& trig", writable ? "" : "const ");
+  /// The _trig functions' parameter.
+  std::string trig_parameter() const {
+    return c() ? fmt::format("const {}_JointTrig* trig", name) : "const JointTrig& trig";
   }
 };
 

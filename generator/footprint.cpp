@@ -171,15 +171,16 @@ Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::
   std::string line;
   static const std::regex sized(R"(^[0-9a-f]+ ([0-9a-f]+) [A-Za-z] (.*)$)");
   std::smatch m;
+  std::vector<std::regex> owns;  // an algorithm's symbols: f, f_trig, f_shape_N and its table
+  for (const std::string& a : algorithms)
+    owns.emplace_back("^" + a + "(_trig|_shape_[0-9]+(_k)?)?$");
   while (std::getline(lines, line)) {
     if (!std::regex_match(line, m, sized)) continue;  // labels without a size
     std::string name = function_name(m[2]);
     if (name.starts_with(prefix)) name = name.substr(prefix.size());
     long owner = -1;
-    for (std::size_t a = 0; a < algorithms.size() && owner < 0; ++a) {
-      const std::regex own("^" + algorithms[a] + "(_trig|_shape_[0-9]+(_k)?)?$");
-      if (std::regex_match(name, own)) owner = static_cast<long>(a);
-    }
+    for (std::size_t a = 0; a < owns.size() && owner < 0; ++a)
+      if (std::regex_match(name, owns[a])) owner = static_cast<long>(a);
     const long bytes = std::stol(m[1], nullptr, 16);
     if (owner < 0) footprint.common_code_bytes += bytes;
     else code[algorithms[owner]] += bytes;

@@ -140,7 +140,7 @@ std::vector<std::string> parameters(const AlgorithmSpec<double>& spec, const std
   std::vector<std::string> out;
   for (const ArraySpec& a : spec.inputs) {
     out.push_back(fmt::format("const {} {}[{}]", scalar, a.name, extent_in(a.extent, dialect)));
-    if (trig && a.name == "q") out.push_back(dialect.trig_parameter(false));
+    if (trig && a.name == "q") out.push_back(dialect.trig_parameter());
   }
   for (const ArraySpec& a : spec.outputs)
     out.push_back(fmt::format("{} {}[{}]", scalar, a.name, extent_in(a.extent, dialect)));
@@ -226,34 +226,35 @@ std::string frame_records(const Model<double>& model) {
   return out + "};\n";
 }
 
-/// The header's frame count and names, or "" without frames.
-std::string frame_declarations(const Model<double>& model, const Dialect& dialect) {
-  if (model.frames.empty()) return "";
+/// The frames' names as initialiser lines, "    \"tool0\",\n" each.
+std::string frame_name_lines(const Model<double>& model) {
   std::string names;
   for (const Frame<double>& f : model.frames)
     names += fmt::format("    {},\n", string_literal(f.name));
-  names.pop_back();
-  const std::string intro = fmt::format(
+  return names;
+}
+
+/// The header's frame count and names, or "" without frames.
+std::string frame_declarations(const Model<double>& model, const Dialect& dialect) {
+  if (model.frames.empty()) return "";
+  const std::string intro =
       "\n/// The frames whose placements, Jacobians or accelerations the functions compute, in "
-      "order\n/// (--frames).\n");
+      "order\n/// (--frames).\n";
   if (dialect.c())
     return fmt::format("{}#define {} {}\nextern const char* const {}[{}];\n", intro,
                        dialect.size("nframes"), model.frames.size(),
                        dialect.external("frame_names"), dialect.size("nframes"));
   return fmt::format(
       "{}inline constexpr int nframes = {};\ninline constexpr const char* frame_names[nframes] = "
-      "{{\n{}\n}};\n",
-      intro, model.frames.size(), names);
+      "{{\n{}}};\n",
+      intro, model.frames.size(), frame_name_lines(model));
 }
 
 /// The C source's definition of the frame names, or "".
 std::string frame_names_definition(const Model<double>& model, const Dialect& dialect) {
   if (model.frames.empty()) return "";
-  std::string names;
-  for (const Frame<double>& f : model.frames)
-    names += fmt::format("    {},\n", string_literal(f.name));
   return fmt::format("\nconst char* const {}[{}] = {{\n{}}};\n", dialect.external("frame_names"),
-                     dialect.size("nframes"), names);
+                     dialect.size("nframes"), frame_name_lines(model));
 }
 
 /// Whether an algorithm has an array per frame.
