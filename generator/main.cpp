@@ -42,13 +42,28 @@ Vec3<double> parse_gravity(const std::string& text) {
   return {g[0], g[1], g[2]};
 }
 
+/// The suffix of the algorithms that give in a frame's own axes what the algorithm without it
+/// gives in the base's (frame_jacobians_local beside frame_jacobians).
+constexpr std::string_view local_suffix = "_local";
+
+bool is_local_variant(const Algorithm& a, const std::vector<Algorithm>& known) {
+  return a.ends_with(local_suffix) &&
+         std::find(known.begin(), known.end(), a.substr(0, a.size() - local_suffix.size())) !=
+             known.end();
+}
+
 /// The comma-separated list of names in `known`, in `known`'s order whatever the order written;
-/// "all" for every one.
+/// "all" for every one but the local-axes variants, which --jacobian-frame adds.
 std::vector<Algorithm> parse_algorithms(const std::string& text,
                                         const std::vector<Algorithm>& known) {
   std::string names;
   for (const Algorithm& a : known) names += (names.empty() ? "" : ", ") + a;
-  if (text == "all") return known;
+  if (text == "all") {
+    std::vector<Algorithm> out;
+    for (const Algorithm& a : known)
+      if (!is_local_variant(a, known)) out.push_back(a);
+    return out;
+  }
   std::vector<Algorithm> listed;
   std::stringstream s(text);
   std::string item;
@@ -63,6 +78,24 @@ std::vector<Algorithm> parse_algorithms(const std::string& text,
   std::vector<Algorithm> out;
   for (const Algorithm& a : known)
     if (std::find(listed.begin(), listed.end(), a) != listed.end()) out.push_back(a);
+  return out;
+}
+
+/// The algorithms with --jacobian-frame applied: each listed algorithm that has a local-axes
+/// variant is replaced by it (local), kept (world) or joined by it (both), in `known`'s order.
+std::vector<Algorithm> with_jacobian_frame(const std::vector<Algorithm>& listed,
+                                           const std::string& frame,
+                                           const std::vector<Algorithm>& known) {
+  std::vector<Algorithm> chosen;
+  for (const Algorithm& a : listed) {
+    const Algorithm local = a + std::string(local_suffix);
+    const bool has_local = std::find(known.begin(), known.end(), local) != known.end();
+    if (!has_local || frame != "local") chosen.push_back(a);
+    if (has_local && frame != "world") chosen.push_back(local);
+  }
+  std::vector<Algorithm> out;
+  for (const Algorithm& a : known)
+    if (std::find(chosen.begin(), chosen.end(), a) != chosen.end()) out.push_back(a);
   return out;
 }
 
@@ -179,11 +212,18 @@ struct ModelFlags {
 /// The options that choose the code, shared by generation and firmware-report.
 struct CodeFlags {
   std::string algorithms = "rnea,crba,aba", scalar = "double", name, structure = "shared",
-              target = "host", lang = "c++";
+              target = "host", lang = "c++", jacobian_frame = "world";
 
   void add_to(CLI::App& app, bool firmware) {
     app.add_option("--algorithms", algorithms,
-                   "comma-separated subset of " + comma_list(algorithm_names()) + ", or all")
+                   "comma-separated subset of " + comma_list(algorithm_names()) +
+                       ", or all (all but the _local variants, which --jacobian-frame chooses)")
+        ->capture_default_str();
+    app.add_option("--jacobian-frame", jacobian_frame,
+                   "the axes of frame_jacobians and frame_accelerations: world (the base's axes "
+                   "at the frame's origin), local (the frame's own axes: the functions named "
+                   "_local) or both")
+        ->check(CLI::IsMember({"world", "local", "both"}))
         ->capture_default_str();
     app.add_option("--scalar", scalar, "scalar type of the generated code")
         ->check(CLI::IsMember({"double", "float"}))
@@ -231,7 +271,8 @@ struct CodeFlags {
 
   GenerateOptions options(const Robot& robot, const ModelFlags& model) const {
     GenerateOptions options;
-    options.algorithms = parse_algorithms(algorithms, algorithm_names());
+    options.algorithms = with_jacobian_frame(parse_algorithms(algorithms, algorithm_names()),
+                                             jacobian_frame, algorithm_names());
     options.single_precision = scalar == "float";
     options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
     options.language = lang == "c" ? Language::C : Language::Cpp;

@@ -14,6 +14,7 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -437,6 +438,40 @@ TEST(Banner, RecordsWhatSnapChanged) {
                         " of "),
             std::string::npos)
       << header.substr(0, 2000);
+}
+
+/// Operations of the generated frame_jacobians for the frames named (every link's if none),
+/// and the number of frames.
+std::pair<long, long> jacobian_operations(const std::string& file, bool floating_base,
+                                          const std::vector<std::string>& frames) {
+  LoadOptions load;
+  load.floating_base = floating_base;
+  load.frames = frames;
+  load.all_frames = frames.empty();
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/" + file, load);
+  GenerateOptions options;
+  options.name = "robot";
+  options.algorithms = {"frame_jacobians"};
+  return {generate(robot, options).counts.front().generated.total(),
+          static_cast<long>(robot.model.frames.size())};
+}
+
+// Selecting a frame costs its chain and no other frame's: ur5's tool0 alone costs at most the
+// full set's average plus the Jacobian of the body tool0 is fixed on (wrist_3_link's origin: the
+// chain's placements, which every frame on it shares); code for all frames would cost the full
+// set. A quadruped's four feet cost four times one foot's at most.
+TEST(FrameSelection, OneFrameCostsOnlyItsChain) {
+  const long tool0 = jacobian_operations("ur5.urdf", false, {"tool0"}).first;
+  const long wrist = jacobian_operations("ur5.urdf", false, {"wrist_3_link"}).first;
+  const auto [every, frames] = jacobian_operations("ur5.urdf", false, {});
+  EXPECT_LE(tool0, every / frames + wrist) << "all " << frames << " frames: " << every;
+  EXPECT_LT(tool0, every);
+  const long foot = jacobian_operations("solo12.urdf", true, {"FL_FOOT"}).first;
+  const long feet =
+      jacobian_operations("solo12.urdf", true, {"FL_FOOT", "FR_FOOT", "HL_FOOT", "HR_FOOT"})
+          .first;
+  EXPECT_LE(feet, 4 * foot);
+  EXPECT_GT(feet, 3 * foot) << "the legs share nothing but the base";
 }
 
 }  // namespace

@@ -293,6 +293,32 @@ TEST_F(WritePackage, CommandRegeneratesItsPackageKeepingTheUsersBuildFolder) {
   EXPECT_TRUE(fs::exists(gen / "arm_dynamics.cpp"));
 }
 
+// --jacobian-frame picks the axes of the frame Jacobians and accelerations; "all" leaves the
+// local-axes functions to it.
+TEST_F(WritePackage, CommandWritesTheJacobiansInTheAxesAsked) {
+  const auto declares = [&](std::vector<std::string> options) {
+    std::vector<std::string> args{planar5, "-q", "-o", (dir / "gen").string()};
+    args.insert(args.end(), options.begin(), options.end());
+    EXPECT_EQ(run_dyngen(args, dir).status, 0);
+    const std::string header = read(dir / "gen" / "planar5_dynamics.hpp");
+    std::vector<std::string> found;
+    for (const char* f : {"frame_jacobians(", "frame_jacobians_local(", "frame_accelerations(",
+                          "frame_accelerations_local("})
+      if (header.find(std::string("void ") + f) != std::string::npos) found.push_back(f);
+    return found;
+  };
+  const std::string both = "frame_jacobians,frame_accelerations";
+  using Names = std::vector<std::string>;
+  EXPECT_EQ(declares({"--algorithms", both}),
+            (Names{"frame_jacobians(", "frame_accelerations("}));
+  EXPECT_EQ(declares({"--algorithms", both, "--jacobian-frame", "local"}),
+            (Names{"frame_jacobians_local(", "frame_accelerations_local("}));
+  EXPECT_EQ(declares({"--algorithms", "frame_jacobians", "--jacobian-frame", "both"}),
+            (Names{"frame_jacobians(", "frame_jacobians_local("}));
+  EXPECT_EQ(declares({"--algorithms", "all"}),
+            (Names{"frame_jacobians(", "frame_accelerations("}));
+}
+
 TEST_F(WritePackage, CommandRefusesAProjectDirectoryBeforeItWorks) {
   const fs::path project = dir / "project";
   write(project / "CMakeLists.txt", "project(mine)\n");
