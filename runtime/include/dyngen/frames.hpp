@@ -150,7 +150,8 @@ RigidInertia<S> subtree_inertias_in_base(const Model<S>& model, Workspace<S>& ws
 
 /// The centre of mass c (base coordinates) and its Jacobian Jc (3 x nv, row-major) at q. Column
 /// of joint j: (m s0.lin + s0.ang x h) / M, with m and h = m c the mass and first moment of j's
-/// subtree and s0 the joint's column at the base origin. A robot without mass has no centre.
+/// subtree and s0 the joint's column at the base origin. It is the centre of the moving bodies:
+/// a fixed base and the links welded to it are not in the model. A robot without mass has none.
 template <class S>
 void com(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<S> c,
          std::span<S> Jc) {

@@ -175,6 +175,7 @@ MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& 
     // goes from a new link of that name (the root, if it has that name, is renamed).
     if (root == "world") {
       root = "dyngen_root";
+      result.renamed["world"] = root;
       links.at("world")->SetAttribute("name", root.c_str());
       for (const auto& [child, joint] : parent_joint)
         if (link_of(joint, "parent") == "world")
@@ -203,6 +204,7 @@ MujocoRobot::MujocoRobot(const std::string& path, const Model<double>& model,
                          const std::vector<std::string>& locked, bool floating_base)
     : model_(model) {
   const MujocoUrdf urdf = mujoco_urdf(path, locked, floating_base);
+  renamed_ = urdf.renamed;
 
   // Load from memory through a virtual file system (an mjVFS is 2 MB: not on the stack).
   const char* file = "robot.urdf";
@@ -364,6 +366,84 @@ std::vector<double> MujocoRobot::aba(std::span<const double> q, std::span<const 
   const Eigen::VectorXd a =
       A.transpose() * (Eigen::Map<const Eigen::VectorXd>(d_->qacc, m_->nv) - free_joint_bias(q, v));
   return {a.begin(), a.end()};
+}
+
+int MujocoRobot::link_body(const std::string& link) const {
+  const auto it = renamed_.find(link);
+  return mj_name2id(m_.get(), mjOBJ_BODY, (it == renamed_.end() ? link : it->second).c_str());
+}
+
+std::vector<std::pair<Matrix3, Vector3>> MujocoRobot::placements(std::span<const double> q,
+                                                                 std::span<const int> bodies) {
+  const std::vector<double> zero(model_.nv, 0.0);
+  set_state(q, zero);
+  mj_kinematics(m_.get(), d_.get());
+  std::vector<std::pair<Matrix3, Vector3>> result;
+  for (const int b : bodies)
+    result.emplace_back(Eigen::Map<const RowMajor3>(d_->xmat + 9 * b),
+                        Eigen::Map<const Vector3>(d_->xpos + 3 * b));
+  return result;
+}
+
+std::vector<Eigen::MatrixXd> MujocoRobot::jacobians(std::span<const double> q,
+                                                    std::span<const int> bodies) {
+  const std::vector<double> zero(model_.nv, 0.0);
+  const Eigen::MatrixXd A = set_state(q, zero);
+  mj_kinematics(m_.get(), d_.get());
+  mj_comPos(m_.get(), d_.get());
+  std::vector<Eigen::MatrixXd> result;
+  RowMajorMatrix J(6, m_->nv);
+  for (const int b : bodies) {
+    mj_jac(m_.get(), d_.get(), J.data(), J.data() + 3 * m_->nv, d_->xpos + 3 * b, b);
+    result.emplace_back(J * A);
+  }
+  return result;
+}
+
+std::pair<Vector3, Eigen::MatrixXd> MujocoRobot::com(std::span<const double> q) {
+  const std::vector<double> zero(model_.nv, 0.0);
+  const Eigen::MatrixXd A = set_state(q, zero);
+  mj_kinematics(m_.get(), d_.get());
+  mj_comPos(m_.get(), d_.get());
+  RowMajorMatrix Jc(3, m_->nv);
+  mj_jacSubtreeCom(m_.get(), d_.get(), Jc.data(), 0);
+  // the world's subtree also holds the bodies welded to the world (a fixed base's root link and
+  // the links fixed to it), which dyngen's model has no inertia for; they add nothing to Jc
+  const double mass = m_->body_subtreemass[0];
+  double fixed_mass = 0;
+  Vector3 fixed_moment = Vector3::Zero();
+  for (int b = 1; b < m_->nbody; ++b) {
+    if (m_->body_weldid[b] != 0) continue;
+    fixed_mass += m_->body_mass[b];
+    fixed_moment += m_->body_mass[b] * Eigen::Map<const Vector3>(d_->xipos + 3 * b);
+  }
+  const double moving_mass = mass - fixed_mass;
+  return {(mass * Eigen::Map<const Vector3>(d_->subtree_com) - fixed_moment) / moving_mass,
+          (mass / moving_mass) * Jc * A};
+}
+
+std::vector<Eigen::Matrix<double, 6, 1>> MujocoRobot::bias_accelerations(
+    std::span<const double> q, std::span<const double> v, std::span<const int> bodies) {
+  set_state(q, v);
+  mj_fwdPosition(m_.get(), d_.get());  // cdof, cinert, subtree_com
+  mj_fwdVelocity(m_.get(), d_.get());  // cvel, cdof_dot
+  // MuJoCo's qacc when dyngen's is 0
+  Eigen::Map<Eigen::VectorXd>(d_->qacc, m_->nv) = free_joint_bias(q, v);
+  // cacc starts at the world with -gravity (MuJoCo's RNE adds gravity that way): without it,
+  // cacc is the bodies' acceleration (spatial, at the subtree's centre of mass)
+  const int flags = m_->opt.disableflags;
+  m_->opt.disableflags |= mjDSBL_GRAVITY;
+  mj_rnePostConstraint(m_.get(), d_.get());
+  m_->opt.disableflags = flags;
+  std::vector<Eigen::Matrix<double, 6, 1>> result;
+  for (const int b : bodies) {
+    // angular first, at xpos; the classical acceleration (it adds w x v to the spatial one)
+    std::array<double, 6> a;
+    mj_objectAcceleration(m_.get(), d_.get(), mjOBJ_XBODY, b, a.data(), 0);
+    result.push_back(
+        (Eigen::Matrix<double, 6, 1>() << a[3], a[4], a[5], a[0], a[1], a[2]).finished());
+  }
+  return result;
 }
 
 }  // namespace dyngen::test::mujoco_peer

@@ -34,6 +34,8 @@ struct MujocoUrdf {
   /// The links (by name) whose principal moments break the triangle inequality A + B >= C:
   /// MuJoCo refuses them unless balanceinertia replaces the moments by their mean.
   std::map<std::string, PrincipalInertia> unphysical;
+  /// The links renamed for MuJoCo: the file's name and MuJoCo's.
+  std::map<std::string, std::string> renamed;
 };
 
 /// The file at path rewritten for MuJoCo: without <visual> and <collision> (their meshes are not
@@ -69,6 +71,10 @@ class MujocoRobot {
   /// MuJoCo's body of dyngen body i.
   int body(int i) const { return m_->jnt_bodyid[joint_[i]]; }
 
+  /// MuJoCo's body of the URDF link named `link` (each link is a body of its own; a fixed base's
+  /// root link named "world" is MuJoCo's world body 0), or -1.
+  int link_body(const std::string& link) const;
+
   /// MuJoCo's inertia of dyngen body i: the sum over the MuJoCo bodies welded to body(i) (its
   /// links on fixed joints), about its origin in its coordinates, as a dense 6x6 matrix.
   Eigen::Matrix<double, 6, 6> inertia(int i) const;
@@ -87,6 +93,29 @@ class MujocoRobot {
   /// Forward dynamics, from mj_forward with tau as qfrc_applied.
   std::vector<double> aba(std::span<const double> q, std::span<const double> v,
                           std::span<const double> tau);
+
+  /// Rotation (xmat: the body's axes as columns) and origin (xpos) of each of `bodies` in the
+  /// world at q, from mj_kinematics.
+  std::vector<std::pair<Eigen::Matrix3d, Eigen::Vector3d>> placements(std::span<const double> q,
+                                                                      std::span<const int> bodies);
+
+  /// Jacobian of each of `bodies` at its origin and q, for dyngen's v: 6 x nv, the origin's
+  /// velocity then the angular velocity, in world axes. mj_jac at xpos after mj_kinematics and
+  /// mj_comPos (which fills cdof), times velocity_map(q).
+  std::vector<Eigen::MatrixXd> jacobians(std::span<const double> q, std::span<const int> bodies);
+
+  /// Centre of mass of the moving bodies, as dyngen's, and its Jacobian (3 x nv) for dyngen's v
+  /// at q: subtree_com of the world body (from mj_comPos) and mj_jacSubtreeCom of it, times
+  /// velocity_map(q), without the bodies welded to the world (a fixed base's, with no inertia
+  /// in dyngen's model).
+  std::pair<Eigen::Vector3d, Eigen::MatrixXd> com(std::span<const double> q);
+
+  /// Classical acceleration of the origin of each of `bodies`, then its angular acceleration,
+  /// in world axes, at q, v and dyngen's acceleration 0: mj_objectAcceleration (world axes) after
+  /// mj_rnePostConstraint with qacc = free_joint_bias(q, v) and gravity disabled.
+  std::vector<Eigen::Matrix<double, 6, 1>> bias_accelerations(std::span<const double> q,
+                                                              std::span<const double> v,
+                                                              std::span<const int> bodies);
 
   /// dyngen's q as MuJoCo's qpos.
   std::vector<double> qpos(std::span<const double> q) const;
@@ -114,6 +143,7 @@ class MujocoRobot {
   std::unique_ptr<mjData, DataDeleter> d_;
   std::vector<int> joint_;  // [nbodies] MuJoCo joint of each dyngen body
   std::map<std::string, std::array<double, 3>> balanced_;
+  std::map<std::string, std::string> renamed_;
 };
 
 }  // namespace dyngen::test::mujoco_peer

@@ -1,7 +1,9 @@
 // The runtime against MuJoCo 2.2.2 on every shared robot, with a fixed and with a floating base:
 // the imported models agree body by body, and the mass matrix (CRBA), inverse dynamics (RNEA)
 // and forward dynamics (ABA) agree to a norm-wise relative error of 1e-9 at seeded random
-// states. The largest errors are printed as a table when the program ends.
+// states, as do every link's frame placement, Jacobian and bias acceleration, and the centre of
+// mass and its Jacobian. The largest dynamics errors are printed as a table when the program
+// ends, the frames' on lines starting with "measured".
 #include "mujoco_peer.hpp"
 
 #include <gtest/gtest.h>
@@ -51,6 +53,12 @@ gen::Robot load(const Case& c) {
   gen::LoadOptions options = c.robot.aba_options;
   options.floating_base = c.floating_base;
   return gen::load_robot(c.robot.path, options);
+}
+
+/// A row-major rows x cols array (the runtime's Jacobian layout) as an Eigen matrix.
+Eigen::MatrixXd row_major(const std::vector<double>& x, int rows, int cols) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      x.data(), rows, cols);
 }
 
 // ---- the table of largest errors, printed when the program ends ---------------------------
@@ -155,6 +163,77 @@ TEST_P(MujocoPeer, DynamicsMatch) {
   EXPECT_LE(row.rnea, tolerance);
   EXPECT_LE(row.aba, tolerance);
   table().push_back(row);
+}
+
+// Every URDF link is a dyngen frame and a MuJoCo body of its own (fusestatic="false"), so the
+// frame functions compare with MuJoCo's bodies of the same links: placements with mj_kinematics,
+// World Jacobians with mj_jac at the bodies' origins, bias accelerations with
+// mj_objectAcceleration at dyngen's qdd = 0, and the centre of mass and its Jacobian with the
+// world body's subtree_com and mj_jacSubtreeCom. Each must agree to a norm-wise relative error
+// of 1e-9 over all frames at once; the largest are printed on a line starting with "measured".
+TEST_P(MujocoPeer, FramesMatch) {
+  gen::LoadOptions options = GetParam().robot.aba_options;
+  options.floating_base = GetParam().floating_base;
+  options.all_frames = true;
+  const gen::Robot robot = gen::load_robot(GetParam().robot.path, options);
+  const Model<double>& model = robot.model;
+  MujocoRobot peer(robot.path, model, robot.locked, GetParam().floating_base);
+  const int nf = static_cast<int>(model.frames.size()), nv = model.nv;
+
+  // every frame's link is a MuJoCo body, and every MuJoCo body but the world is a frame's
+  std::vector<int> bodies;
+  for (const Frame<double>& f : model.frames) {
+    bodies.push_back(peer.link_body(f.name));
+    ASSERT_GE(bodies.back(), 0) << "MuJoCo has no body for link " << f.name;
+  }
+  std::vector<int> distinct = bodies;
+  distinct.push_back(0);
+  std::ranges::sort(distinct);
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  ASSERT_EQ(static_cast<int>(distinct.size()), peer.mj()->nbody);
+
+  Workspace<double> ws(model);
+  std::vector<double> R(9 * nf), p(3 * nf), J(6 * static_cast<std::size_t>(nf) * nv),
+      Jdot_v(6 * nf), c(3), Jc(3 * nv);
+  Eigen::VectorXd pose(12 * nf), pose_mj(12 * nf), bias_mj(6 * nf);
+  Eigen::MatrixXd J_mj(6 * nf, nv);
+  double placements = 0, jacobians = 0, bias = 0, centre = 0, centre_jacobian = 0;
+  Random rng(20261121);
+  for (int sample = 0; sample < samples; ++sample) {
+    const State s = random_state(model, rng);
+    frame_placements<double>(model, ws, s.q, R, p);
+    frame_jacobians<double>(model, ws, s.q, JacobianAxes::World, J);
+    frame_bias_accelerations<double>(model, ws, s.q, s.qd, JacobianAxes::World, Jdot_v);
+    com<double>(model, ws, s.q, c, Jc);
+
+    const auto placements_mj = peer.placements(s.q, bodies);
+    const auto jacobians_mj = peer.jacobians(s.q, bodies);
+    const auto bias_accelerations_mj = peer.bias_accelerations(s.q, s.qd, bodies);
+    const auto [c_mj, Jc_mj] = peer.com(s.q);
+    for (int f = 0; f < nf; ++f) {
+      const auto& [R_mj, p_mj] = placements_mj[f];
+      pose.segment(12 * f, 9) = Eigen::Map<const Eigen::VectorXd>(&R[9 * f], 9);
+      pose.segment(12 * f + 9, 3) = Eigen::Map<const Eigen::VectorXd>(&p[3 * f], 3);
+      for (int row = 0; row < 3; ++row) pose_mj.segment(12 * f + 3 * row, 3) = R_mj.row(row);
+      pose_mj.segment(12 * f + 9, 3) = p_mj;
+      J_mj.middleRows(6 * f, 6) = jacobians_mj[f];
+      bias_mj.segment(6 * f, 6) = bias_accelerations_mj[f];
+    }
+    placements = std::max(placements, relative_error(pose, pose_mj));
+    jacobians = std::max(jacobians, relative_error(row_major(J, 6 * nf, nv), J_mj));
+    bias = std::max(bias, relative_error(to_eigen(Jdot_v), bias_mj));
+    centre = std::max(centre, relative_error(to_eigen(c), c_mj));
+    centre_jacobian = std::max(centre_jacobian, relative_error(row_major(Jc, 3, nv), Jc_mj));
+  }
+  EXPECT_LE(placements, tolerance);
+  EXPECT_LE(jacobians, tolerance);
+  EXPECT_LE(bias, tolerance);
+  EXPECT_LE(centre, tolerance);
+  EXPECT_LE(centre_jacobian, tolerance);
+  std::printf(
+      "measured %s (%d frames): frame_placements %.2e, frame_jacobians %.2e, "
+      "frame_bias_accelerations %.2e, com c %.2e, com Jc %.2e\n",
+      case_name(GetParam()).c_str(), nf, placements, jacobians, bias, centre, centre_jacobian);
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, MujocoPeer, ::testing::ValuesIn(cases()),
