@@ -501,9 +501,11 @@ int main(int argc, char** argv) {
 
     if (!quiet) {
       fmt::print("operations per call, generated vs runtime (add+sub, mul, div, neg, sin, cos):\n");
+      std::size_t width = 0;
+      for (const FunctionCounts& c : generated.counts) width = std::max(width, c.algorithm.size());
       for (const FunctionCounts& c : generated.counts)
-        fmt::print("  {:<16} {:>7} vs {:>7}  ({:.0f}% removed)   generated: {}\n",
-                   c.algorithm, c.generated.total(), c.runtime.total(),
+        fmt::print("  {:<{}} {:>7} vs {:>7}  ({:.0f}% removed)   generated: {}\n",
+                   c.algorithm, width, c.generated.total(), c.runtime.total(),
                    100.0 * (1.0 - double(c.generated.total()) / double(c.runtime.total())),
                    to_string(c.generated));
       if (robot.snapped) fmt::print("{}\n", snap_text(*robot.snapped));
