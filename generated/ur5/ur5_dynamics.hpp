@@ -56,13 +56,13 @@
 //     runtime:   add 657, mul 846, div 0, neg 0, sin 6, cos 6
 //     0 of 6 link sections in 0 shared functions
 //   com
-//     generated: add 83, mul 153, div 0, neg 0, sin 5, cos 5
+//     generated: add 30, mul 67, div 0, neg 0, sin 4, cos 4
 //     runtime:   add 729, mul 945, div 1, neg 0, sin 6, cos 6
-//     0 of 21 link sections in 0 shared functions
+//     0 of 11 link sections in 0 shared functions
 //   centroidal
-//     generated: add 354, mul 444, div 0, neg 1, sin 6, cos 6
+//     generated: add 202, mul 262, div 0, neg 2, sin 6, cos 6
 //     runtime:   add 873, mul 1089, div 1, neg 0, sin 6, cos 6
-//     2 of 21 link sections in 1 shared functions
+//     0 of 16 link sections in 0 shared functions
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 1.7e+02, max 2.9e+02: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.026 (joint 'shoulder_pan_joint'), articulated inertias span 90:

@@ -129,19 +129,19 @@ void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span
 
 namespace detail {
 
-/// ws.Ic[i]: the inertia of body i's subtree in base coordinates (about the base origin), after
-/// body_placements; returns the total.
+/// ws.Ic[i]: the inertia of body i's subtree in its own coordinates (CRBA's composite inertias,
+/// RBDA eq. 6.4: Ic_p += Xup_i^T Ic_i Xup_i), after body_placements; returns the robot's
+/// inertia in base coordinates, about the base origin. Carried up through the joints' own
+/// transforms, which hold the model's constants, rather than through X_i0.
 template <class S>
-RigidInertia<S> subtree_inertias_in_base(const Model<S>& model, Workspace<S>& ws) {
-  for (int i = 0; i < model.nbodies; ++i) {
-    TraceHook<S>::enter(i, Pass::CompositeInertia);
-    ws.Ic[i] = apply_inertia_T(ws.X0[i], model.I[i]);
-  }
+RigidInertia<S> composite_inertias(const Model<S>& model, Workspace<S>& ws) {
+  for (int i = 0; i < model.nbodies; ++i) ws.Ic[i] = model.I[i];
   RigidInertia<S> total{};
   for (int i = model.nbodies - 1; i >= 0; --i) {
     TraceHook<S>::enter(i, Pass::CompositeInertia);
-    if (model.parent[i] >= 0) ws.Ic[model.parent[i]] = ws.Ic[model.parent[i]] + ws.Ic[i];
-    else total = total + ws.Ic[i];
+    const int p = model.parent[i];
+    if (p >= 0) ws.Ic[p] = ws.Ic[p] + apply_inertia_T(ws.Xup[i], ws.Ic[i]);
+    else total = total + apply_inertia_T(ws.X0[i], ws.Ic[i]);
   }
   return total;
 }
@@ -149,23 +149,22 @@ RigidInertia<S> subtree_inertias_in_base(const Model<S>& model, Workspace<S>& ws
 }  // namespace detail
 
 /// The centre of mass c (base coordinates) and its Jacobian Jc (3 x nv, row-major) at q. Column
-/// of joint j: (m s0.lin + s0.ang x h) / M, with m and h = m c the mass and first moment of j's
-/// subtree and s0 the joint's column at the base origin. It is the centre of the moving bodies:
-/// a fixed base and the links welded to it are not in the model. A robot without mass has none.
+/// of joint j: the linear momentum of j's subtree moving with the joint's column, over the
+/// total mass M. It is the centre of the moving bodies: a fixed base and the links welded to it
+/// are not in the model. A robot without mass has none.
 template <class S>
 void com(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<S> c,
          std::span<S> Jc) {
   detail::body_placements(model, ws, q);
-  const RigidInertia<S> total = detail::subtree_inertias_in_base(model, ws);
+  const RigidInertia<S> total = detail::composite_inertias(model, ws);
   const S inverse_mass = S(1) / total.m;
   c[0] = total.h.x * inverse_mass, c[1] = total.h.y * inverse_mass, c[2] = total.h.z * inverse_mass;
   const int nv = model.nv;
   for (int j = 0; j < model.nbodies; ++j) {
     TraceHook<S>::enter(j, Pass::JacobianColumns);
     for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
-      const Motion<S> s0 = apply_motion_inv(ws.X0[j], joint_column(model, j, d));
-      const Vec3<S> column =
-          scale(scale(s0.lin, ws.Ic[j].m) + cross(s0.ang, ws.Ic[j].h), inverse_mass);
+      const Force<S> Fj = mul(ws.Ic[j], joint_column(model, j, d));
+      const Vec3<S> column = scale(mul_T(ws.X0[j].E, Fj.lin), inverse_mass);
       const int k = model.v_index[j] + d;
       Jc[k] = column.x, Jc[nv + k] = column.y, Jc[2 * nv + k] = column.z;
     }
@@ -175,19 +174,20 @@ void com(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
 /// The centroidal momentum matrix A (6 x nv, row-major) and momentum h = A v at q, v (Orin,
 /// Goswami & Lee 2013): the linear momentum and the angular momentum about the centre of mass,
 /// in the base's axes (linear rows first). Column of joint j: the momentum of j's subtree moving
-/// with the joint's column, Ic_j s0 about the base origin, moved to the centre of mass.
+/// with the joint's column, Ic_j s in base coordinates about the base origin (X_j0^T Ic_j s),
+/// moved to the centre of mass.
 template <class S>
 void centroidal(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                 std::span<const S> v, std::span<S> A, std::span<S> h) {
   detail::body_placements(model, ws, q);
-  const RigidInertia<S> total = detail::subtree_inertias_in_base(model, ws);
+  const RigidInertia<S> total = detail::composite_inertias(model, ws);
   const Vec3<S> c = scale(total.h, S(1) / total.m);
   const int nv = model.nv;
   for (int e = 0; e < 6; ++e) h[e] = S(0);
   for (int j = 0; j < model.nbodies; ++j) {
     TraceHook<S>::enter(j, Pass::JacobianColumns);
     for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
-      const Force<S> m0 = mul(ws.Ic[j], apply_motion_inv(ws.X0[j], joint_column(model, j, d)));
+      const Force<S> m0 = apply_force_T(ws.X0[j], mul(ws.Ic[j], joint_column(model, j, d)));
       const Vec3<S> angular = m0.ang - cross(c, m0.lin);
       const int k = model.v_index[j] + d;
       const S column[6] = {m0.lin.x, m0.lin.y, m0.lin.z, angular.x, angular.y, angular.z};
