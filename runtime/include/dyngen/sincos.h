@@ -520,12 +520,14 @@ static inline void dyngen_sincosf(float x, float* s, float* c) {
 /* s[k] = sin(x[k]), c[k] = cos(x[k]) for k < n: the same bits as n calls of the above, in about
  * half their time where the compiler vectorises the first loop (GCC does at -O3), which also
  * notes whether any argument is large or not finite (its magnitude's bits at or above the
- * bound's: NaN's are above infinity's); only then does the second loop redo those. */
+ * bound's: NaN's are above infinity's); only then does the second loop redo those. The note
+ * compares the high 32 bits alone (the bound's low word is 0): SSE2 has no 64-bit integer
+ * comparison, and GCC does not vectorise the loop with one. */
 static inline void dyngen_sincos_array(const double* x, double* s, double* c, int n) {
-  dyngen_sc_u64 large = 0;
+  dyngen_sc_u32 large = 0;
   for (int k = 0; k < n; ++k) {
     dyngen_sc_sincos_fast(x[k], &s[k], &c[k]);
-    large |= (dyngen_sc_bits(x[k]) & ~(1ULL << 63)) >= 0x4140000000000000ULL; /* 2^21 */
+    large |= ((dyngen_sc_u32)(dyngen_sc_bits(x[k]) >> 32) & 0x7FFFFFFFu) >= 0x41400000u; /* 2^21 */
   }
   if (large)
     for (int k = 0; k < n; ++k)
