@@ -48,12 +48,12 @@
 //     runtime:   add 657, mul 942, div 0, neg 0, sin 6, cos 6
 //     0 of 19 link sections in 0 shared functions
 //   frame_accelerations
-//     generated: add 162, mul 243, div 0, neg 0, sin 6, cos 6
-//     runtime:   add 633, mul 810, div 0, neg 0, sin 6, cos 6
+//     generated: add 145, mul 177, div 0, neg 0, sin 5, cos 5
+//     runtime:   add 489, mul 618, div 0, neg 0, sin 6, cos 6
 //     0 of 6 link sections in 0 shared functions
 //   frame_accelerations_local
-//     generated: add 198, mul 288, div 0, neg 0, sin 6, cos 6
-//     runtime:   add 657, mul 846, div 0, neg 0, sin 6, cos 6
+//     generated: add 189, mul 239, div 0, neg 0, sin 6, cos 6
+//     runtime:   add 513, mul 654, div 0, neg 0, sin 6, cos 6
 //     0 of 6 link sections in 0 shared functions
 //   com
 //     generated: add 30, mul 67, div 0, neg 0, sin 4, cos 4

@@ -88,9 +88,10 @@ void frame_jacobians(const Model<S>& model, Workspace<S>& ws, std::span<const S>
 
 /// Each frame's bias acceleration at q, v: the classical acceleration of its origin and its
 /// angular acceleration at qdd = 0, 6 per frame (linear first), so that a frame's acceleration is
-/// J qdd + this (Jdot v); in the base's axes or the frame's own. The bodies' spatial accelerations
-/// at qdd = 0 (RBDA eq. 5.7 with qdd = 0: a_i = X_i a_p + v_i x vJ_i), taken to the base and then
-/// to the origin p: a_p = a.lin + a.ang x p + w x (v.lin + w x p).
+/// J qdd + this (Jdot v); in the base's axes or the frame's own. The bodies' velocities and
+/// spatial accelerations at qdd = 0 in base coordinates, where a joint's motion vJ0 = X_i0^-1 vJ
+/// turns with its body: v_i = v_p + vJ0, a_i = a_p + v_p x vJ0 (RBDA eq. 5.7 with qdd = 0, as
+/// v_i x vJ0 = v_p x vJ0); then at the origin p: a.lin + a.ang x p + w x (v.lin + w x p).
 template <class S>
 void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                               std::span<const S> v, JacobianAxes axes, std::span<S> out) {
@@ -98,15 +99,14 @@ void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span
     TraceHook<S>::enter(i, Pass::Velocity);
     const int p = model.parent[i];
     ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
-    const Motion<S> vJ = joint_motion(model, i, &v[model.v_index[i]]);
+    ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
+    const Motion<S> vJ0 = apply_motion_inv(ws.X0[i], joint_motion(model, i, &v[model.v_index[i]]));
     if (p < 0) {
-      ws.X0[i] = ws.Xup[i];
-      ws.v[i] = vJ;
-      ws.a[i] = Motion<S>{};  // the base does not move, and vJ x vJ = 0
+      ws.v[i] = vJ0;
+      ws.a[i] = Motion<S>{};  // the base does not move
     } else {
-      ws.X0[i] = compose(ws.Xup[i], ws.X0[p]);
-      ws.v[i] = apply_motion(ws.Xup[i], ws.v[p]) + vJ;
-      ws.a[i] = apply_motion(ws.Xup[i], ws.a[p]) + cross_motion(ws.v[i], vJ);
+      ws.v[i] = ws.v[p] + vJ0;
+      ws.a[i] = ws.a[p] + cross_motion(ws.v[p], vJ0);
     }
   }
   for (int f = 0; f < static_cast<int>(model.frames.size()); ++f) {
@@ -118,8 +118,8 @@ void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span
       continue;
     }
     const Xform<S> X = detail::frame_transform(model, ws, f);
-    const Motion<S> v0 = apply_motion_inv(ws.X0[b], ws.v[b]);
-    const Motion<S> a0 = apply_motion_inv(ws.X0[b], ws.a[b]);
+    const Motion<S>& v0 = ws.v[b];
+    const Motion<S>& a0 = ws.a[b];
     const Vec3<S> v_origin = v0.lin + cross(v0.ang, X.r);
     Vec3<S> lin = a0.lin + cross(a0.ang, X.r) + cross(v0.ang, v_origin), ang = a0.ang;
     if (axes == JacobianAxes::Local) lin = mul(X.E, lin), ang = mul(X.E, ang);
