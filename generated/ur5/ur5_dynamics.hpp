@@ -60,8 +60,8 @@
 //     runtime:   add 729, mul 945, div 1, neg 0, sin 6, cos 6
 //     0 of 11 link sections in 0 shared functions
 //   centroidal
-//     generated: add 202, mul 262, div 0, neg 2, sin 6, cos 6
-//     runtime:   add 873, mul 1089, div 1, neg 0, sin 6, cos 6
+//     generated: add 191, mul 242, div 0, neg 2, sin 6, cos 6
+//     runtime:   add 855, mul 1053, div 1, neg 0, sin 6, cos 6
 //     0 of 16 link sections in 0 shared functions
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 1.7e+02, max 2.9e+02: a relative change of tau or M can change qdd up to that many times

@@ -174,8 +174,8 @@ void com(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
 /// The centroidal momentum matrix A (6 x nv, row-major) and momentum h = A v at q, v (Orin,
 /// Goswami & Lee 2013): the linear momentum and the angular momentum about the centre of mass,
 /// in the base's axes (linear rows first). Column of joint j: the momentum of j's subtree moving
-/// with the joint's column, Ic_j s in base coordinates about the base origin (X_j0^T Ic_j s),
-/// moved to the centre of mass.
+/// with the joint's column, Ic_j s, in base axes about the centre of mass: X_j0^T Ic_j s with
+/// the moment taken about c instead of the base origin, E^T n + (r - c) x E^T f.
 template <class S>
 void centroidal(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                 std::span<const S> v, std::span<S> A, std::span<S> h) {
@@ -186,11 +186,14 @@ void centroidal(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
   for (int e = 0; e < 6; ++e) h[e] = S(0);
   for (int j = 0; j < model.nbodies; ++j) {
     TraceHook<S>::enter(j, Pass::JacobianColumns);
+    const Mat3<S>& E = ws.X0[j].E;
+    const Vec3<S> arm = ws.X0[j].r - c;  // from the centre of mass to body j's origin
     for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
-      const Force<S> m0 = apply_force_T(ws.X0[j], mul(ws.Ic[j], joint_column(model, j, d)));
-      const Vec3<S> angular = m0.ang - cross(c, m0.lin);
+      const Force<S> F = mul(ws.Ic[j], joint_column(model, j, d));
+      const Vec3<S> linear = mul_T(E, F.lin);
+      const Vec3<S> angular = mul_T(E, F.ang) + cross(arm, linear);
       const int k = model.v_index[j] + d;
-      const S column[6] = {m0.lin.x, m0.lin.y, m0.lin.z, angular.x, angular.y, angular.z};
+      const S column[6] = {linear.x, linear.y, linear.z, angular.x, angular.y, angular.z};
       for (int row = 0; row < 6; ++row) {
         A[row * nv + k] = column[row];
         h[row] = h[row] + column[row] * v[k];
