@@ -28,6 +28,7 @@
 
 #include "dyngen/dyngen.hpp"
 #include "kdl_peer.hpp"
+#include "median_collector.hpp"
 #include "mujoco_peer.hpp"
 #include "package.hpp"
 #include "robot.hpp"
@@ -371,25 +372,6 @@ std::unique_ptr<Subject> make_subject(const Package& p) {
   return s;
 }
 
-/// Keeps the median of each benchmark's repetitions (the only run without repetitions) and
-/// prints it as progress.
-class MedianCollector : public benchmark::BenchmarkReporter {
- public:
-  std::map<std::string, double> ns;
-
-  bool ReportContext(const Context&) override { return true; }
-
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& r : runs) {
-      if (r.run_type == Run::RT_Aggregate && r.aggregate_name != "median") continue;
-      if (r.run_type == Run::RT_Iteration && r.repetitions > 1) continue;
-      ns[r.run_name.function_name] = r.GetAdjustedRealTime();
-      std::printf("  %-40s %12.1f ns\n", r.run_name.function_name.c_str(), r.GetAdjustedRealTime());
-      std::fflush(stdout);
-    }
-  }
-};
-
 /// Operations per call (add, mul, div, neg, sin and cos together) of the generated code and of
 /// the runtime, from the banner of NAME_dynamics.hpp.
 struct OperationCounts {
@@ -562,7 +544,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf("all agree with the runtime to %.0e; timing\n", tolerance);
-  MedianCollector collector;
+  MedianCollector collector(MedianCollector::Clock::Real);
   benchmark::RunSpecifiedBenchmarks(&collector);
   if (argc == 2) write_results(argv[1], subjects, collector.ns);
   return 0;

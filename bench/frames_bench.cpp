@@ -36,6 +36,7 @@
 #include "emit.hpp"
 #include "frame_packages.hpp"
 #include "kdl_peer.hpp"
+#include "median_collector.hpp"
 #include "mujoco_peer.hpp"
 #include "robot.hpp"
 #include "trace.hpp"
@@ -451,25 +452,6 @@ std::pair<long, long> operation_counts(const Model<double>& model, Function f) {
           gen::count_ops(gen::trace<double>(function_names[f], model, false), false).total()};
 }
 
-/// Keeps the median of each benchmark's repetitions (the only run without repetitions) and
-/// prints it as progress.
-class MedianCollector : public benchmark::BenchmarkReporter {
- public:
-  std::map<std::string, double> ns;
-
-  bool ReportContext(const Context&) override { return true; }
-
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& r : runs) {
-      if (r.run_type == Run::RT_Aggregate && r.aggregate_name != "median") continue;
-      if (r.run_type == Run::RT_Iteration && r.repetitions > 1) continue;
-      ns[r.run_name.function_name] = r.GetAdjustedCPUTime();
-      std::printf("  %-45s %12.1f ns\n", r.run_name.function_name.c_str(), r.GetAdjustedCPUTime());
-      std::fflush(stdout);
-    }
-  }
-};
-
 std::string benchmark_name(const Subject& s, Function f, Implementation i) {
   return std::string(s.package.name) + "/" + function_names[f] + "/" + implementation_names[i];
 }
@@ -560,7 +542,7 @@ int main(int argc, char** argv) {
       }
     });
   }
-  MedianCollector collector;
+  MedianCollector collector(MedianCollector::Clock::Cpu);
   benchmark::RunSpecifiedBenchmarks(&collector);
   const std::string md = table(subjects, collector.ns);
   std::printf("\n%s", md.c_str());

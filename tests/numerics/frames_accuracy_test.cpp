@@ -118,6 +118,16 @@ std::array<Exact, 6> motion(const Placements& at, const std::vector<Exact>& dR,
   return local;
 }
 
+/// qp, qm = q moved by +h and -h along direction col of v (integrate).
+void neighbours(const RobotAtState& c, int col, const Exact& h, std::vector<Exact>& qp,
+                std::vector<Exact>& qm) {
+  std::vector<Exact> d(c.model.nv, Exact(0));
+  d[col] = h;
+  integrate<Exact>(c.exact.model(), c.q, d, qp);
+  d[col] = -h;
+  integrate<Exact>(c.exact.model(), c.q, d, qm);
+}
+
 constexpr JacobianAxes both_axes[] = {JacobianAxes::World, JacobianAxes::Local};
 
 const char* axes_name(JacobianAxes axes) { return axes == JacobianAxes::World ? "world" : "local"; }
@@ -148,14 +158,10 @@ TEST(FramesAccuracy, JacobiansAreTheDerivativesOfThePlacements) {
     RobotAtState c(robot);
     const int nv = c.model.nv, nf = static_cast<int>(c.model.frames.size());
     const Exact h = step();
-    std::vector<Exact> d(nv, Exact(0)), qp(c.q.size()), qm(c.q.size());
+    std::vector<Exact> qp(c.q.size()), qm(c.q.size());
     std::vector<std::vector<Exact>> reference(2, std::vector<Exact>(6 * std::size_t(nf) * nv));
     for (int col = 0; col < nv; ++col) {
-      d[col] = h;
-      integrate<Exact>(c.exact.model(), c.q, d, qp);
-      d[col] = -h;
-      integrate<Exact>(c.exact.model(), c.q, d, qm);
-      d[col] = 0;
+      neighbours(c, col, h, qp, qm);
       const Placements plus = placements(c, qp), minus = placements(c, qm), at = placements(c, c.q);
       std::vector<Exact> dR(at.R.size()), dp(at.p.size());
       for (std::size_t k = 0; k < dR.size(); ++k) dR[k] = (plus.R[k] - minus.R[k]) / (2 * h);
@@ -244,14 +250,10 @@ TEST(FramesAccuracy, CentreOfMassJacobianIsTheDerivativeOfTheCentre) {
     RobotAtState c(robot);
     const int nv = c.model.nv;
     const Exact h = step();
-    std::vector<Exact> d(nv, Exact(0)), qp(c.q.size()), qm(c.q.size()), cp(3), cm(3),
+    std::vector<Exact> qp(c.q.size()), qm(c.q.size()), cp(3), cm(3),
         unused(3 * std::size_t(nv)), reference(3 * std::size_t(nv));
     for (int col = 0; col < nv; ++col) {
-      d[col] = h;
-      integrate<Exact>(c.exact.model(), c.q, d, qp);
-      d[col] = -h;
-      integrate<Exact>(c.exact.model(), c.q, d, qm);
-      d[col] = 0;
+      neighbours(c, col, h, qp, qm);
       com<Exact>(c.exact.model(), c.ews, qp, cp, unused);
       com<Exact>(c.exact.model(), c.ews, qm, cm, unused);
       for (int row = 0; row < 3; ++row) reference[row * nv + col] = (cp[row] - cm[row]) / (2 * h);
