@@ -521,10 +521,17 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     const ProgramArray& array = program.outputs[a];
     if (output_in_place[a])
       out += fmt::format("    // {}: written by the kernel\n", array.spec.name);
-    else
-      for (std::size_t k = 0; k < array.size; ++k)
+    else {
+      // an array with a block per frame says whose block begins
+      const std::size_t frames = array.spec.extent.per_frame ? model.frames.size() : 0;
+      for (std::size_t k = 0; k < array.size; ++k) {
+        if (frames > 0 && k % (array.size / frames) == 0)
+          out += fmt::format("    // frame '{}'\n",
+                             safe_text(model.frames[k / (array.size / frames)].name));
         out += fmt::format("    {}[{}] = {};\n", array.spec.name, k,
                            operand(program.stored[stored + k]));
+      }
+    }
     stored += array.size;
   }
   return code;

@@ -15494,6 +15494,7 @@ void frame_placements_trig(const double q[nq], const JointTrig& trig, double R[n
     const double wrist_3_link_51 = wrist_2_link_13 + wrist_3_link_50;
 
     // ---- outputs
+    // frame 'ee_link'
     R[0] = wrist_3_link_26;
     R[1] = wrist_3_link_32;
     R[2] = wrist_3_link_12;
@@ -15503,6 +15504,7 @@ void frame_placements_trig(const double q[nq], const JointTrig& trig, double R[n
     R[6] = wrist_3_link_30;
     R[7] = wrist_3_link_36;
     R[8] = wrist_3_link_18;
+    // frame 'tool0'
     R[9] = wrist_3_link_2;
     R[10] = wrist_3_link_43;
     R[11] = wrist_3_link_47;
@@ -15512,6 +15514,7 @@ void frame_placements_trig(const double q[nq], const JointTrig& trig, double R[n
     R[15] = wrist_3_link_9;
     R[16] = wrist_3_link_45;
     R[17] = wrist_3_link_51;
+    // frame 'base'
     R[18] = (-1.0);
     R[19] = (-2.0682310711021444e-13);
     R[20] = 0.0;
@@ -15521,12 +15524,15 @@ void frame_placements_trig(const double q[nq], const JointTrig& trig, double R[n
     R[24] = 0.0;
     R[25] = 0.0;
     R[26] = 1.0;
+    // frame 'ee_link'
     p[0] = wrist_3_link_40;
     p[1] = wrist_3_link_41;
     p[2] = wrist_3_link_42;
+    // frame 'tool0'
     p[3] = wrist_3_link_40;
     p[4] = wrist_3_link_41;
     p[5] = wrist_3_link_42;
+    // frame 'base'
     p[6] = 0.0;
     p[7] = 0.0;
     p[8] = 0.0;
@@ -15736,6 +15742,7 @@ void frame_jacobians_trig(const double q[nq], const JointTrig& trig,
     const double shoulder_link_1 = -wrist_3_link_10;
 
     // ---- outputs
+    // frame 'ee_link'
     J[0] = shoulder_link_1;
     J[1] = upper_arm_link_15;
     J[2] = forearm_link_33;
@@ -15772,6 +15779,7 @@ void frame_jacobians_trig(const double q[nq], const JointTrig& trig,
     J[33] = 0.0;
     J[34] = wrist_1_link_21;
     J[35] = wrist_2_link_7;
+    // frame 'tool0'
     J[36] = shoulder_link_1;
     J[37] = upper_arm_link_15;
     J[38] = forearm_link_33;
@@ -15808,6 +15816,7 @@ void frame_jacobians_trig(const double q[nq], const JointTrig& trig,
     J[69] = 0.0;
     J[70] = wrist_1_link_21;
     J[71] = wrist_2_link_7;
+    // frame 'base'
     J[72] = 0.0;
     J[73] = 0.0;
     J[74] = 0.0;
@@ -16353,6 +16362,7 @@ void frame_jacobians_local_trig(const double q[nq], const JointTrig& trig,
     const double shoulder_link_17 = shoulder_link_15 - shoulder_link_16;
 
     // ---- outputs
+    // frame 'ee_link'
     J_local[0] = shoulder_link_2;
     J_local[1] = upper_arm_link_22;
     J_local[2] = forearm_link_40;
@@ -16389,6 +16399,7 @@ void frame_jacobians_local_trig(const double q[nq], const JointTrig& trig,
     J_local[33] = wrist_1_link_64;
     J_local[34] = wrist_2_link_68;
     J_local[35] = wrist_3_link_93;
+    // frame 'tool0'
     J_local[36] = shoulder_link_11;
     J_local[37] = upper_arm_link_37;
     J_local[38] = forearm_link_55;
@@ -16425,6 +16436,7 @@ void frame_jacobians_local_trig(const double q[nq], const JointTrig& trig,
     J_local[69] = wrist_1_link_88;
     J_local[70] = wrist_2_link_98;
     J_local[71] = wrist_3_link_132;
+    // frame 'base'
     J_local[72] = 0.0;
     J_local[73] = 0.0;
     J_local[74] = 0.0;
@@ -16812,18 +16824,21 @@ void frame_accelerations_trig(const double q[nq], const JointTrig& trig, const d
     const double wrist_3_link_101 = wrist_3_link_86 + wrist_3_link_98;
 
     // ---- outputs
+    // frame 'ee_link'
     Jdot_v[0] = wrist_3_link_99;
     Jdot_v[1] = wrist_3_link_100;
     Jdot_v[2] = wrist_3_link_101;
     Jdot_v[3] = wrist_3_link_54;
     Jdot_v[4] = wrist_3_link_55;
     Jdot_v[5] = wrist_3_link_56;
+    // frame 'tool0'
     Jdot_v[6] = wrist_3_link_99;
     Jdot_v[7] = wrist_3_link_100;
     Jdot_v[8] = wrist_3_link_101;
     Jdot_v[9] = wrist_3_link_54;
     Jdot_v[10] = wrist_3_link_55;
     Jdot_v[11] = wrist_3_link_56;
+    // frame 'base'
     Jdot_v[12] = 0.0;
     Jdot_v[13] = 0.0;
     Jdot_v[14] = 0.0;
@@ -17289,18 +17304,21 @@ void frame_accelerations_local_trig(const double q[nq], const JointTrig& trig, c
     const double wrist_3_link_200 = wrist_3_link_196 + wrist_3_link_199;
 
     // ---- outputs
+    // frame 'ee_link'
     Jdot_v_local[0] = wrist_3_link_136;
     Jdot_v_local[1] = wrist_3_link_141;
     Jdot_v_local[2] = wrist_3_link_146;
     Jdot_v_local[3] = wrist_3_link_151;
     Jdot_v_local[4] = wrist_3_link_156;
     Jdot_v_local[5] = wrist_3_link_161;
+    // frame 'tool0'
     Jdot_v_local[6] = wrist_3_link_175;
     Jdot_v_local[7] = wrist_3_link_180;
     Jdot_v_local[8] = wrist_3_link_185;
     Jdot_v_local[9] = wrist_3_link_190;
     Jdot_v_local[10] = wrist_3_link_195;
     Jdot_v_local[11] = wrist_3_link_200;
+    // frame 'base'
     Jdot_v_local[12] = 0.0;
     Jdot_v_local[13] = 0.0;
     Jdot_v_local[14] = 0.0;

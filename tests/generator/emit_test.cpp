@@ -474,4 +474,22 @@ TEST(FrameSelection, OneFrameCostsOnlyItsChain) {
   EXPECT_GT(feet, 3 * foot) << "the legs share nothing but the base";
 }
 
+// The outputs of an array with a block per frame say whose block begins, in frame order.
+TEST(FrameSelection, OutputsNameTheFrameOfEachBlock) {
+  LoadOptions load;
+  load.frames = {"tool0", "ee_link"};
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/ur5.urdf", load);
+  GenerateOptions options;
+  options.name = "ur5";
+  options.algorithms = {"frame_jacobians"};
+  std::string source;
+  for (const GeneratedFile& f : generate(robot, options).files)
+    if (f.name == "ur5_dynamics.cpp") source = f.text;
+  const std::size_t tool0 = source.find("    // frame 'tool0'\n    J[0] = ");
+  const std::size_t ee_link = source.find("    // frame 'ee_link'\n    J[36] = ");
+  EXPECT_NE(tool0, std::string::npos);
+  EXPECT_NE(ee_link, std::string::npos);
+  EXPECT_LT(tool0, ee_link);
+}
+
 }  // namespace
