@@ -15,6 +15,7 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dyngen/dyngen.hpp"
@@ -137,16 +138,25 @@ Eigen::Vector3d rotation_rate(const Eigen::Matrix3d& after, const Eigen::Matrix3
   return Eigen::Vector3d(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1)) / (2 * two_h);
 }
 
+/// q (free joints' quaternions normalised) and v, every entry uniform in [-1.5, 1.5], from seed.
+std::pair<std::vector<double>, std::vector<double>> random_q_v(const Model<double>& model,
+                                                               unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  std::vector<double> q(model.nq), v(model.nv);
+  for (double& x : q) x = u(rng);
+  for (double& x : v) x = u(rng);
+  normalize_configuration<double>(model, q);
+  return {q, v};
+}
+
 TEST_P(FrameJacobians, AreTheDerivativesOfThePlacements) {
   const Model<double> model = with_frames(GetParam().make());
   const int nv = model.nv, nf = static_cast<int>(model.frames.size());
   ASSERT_GT(nf, 0);
   Workspace<double> ws(model);
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-1.5, 1.5);
-  std::vector<double> q(model.nq), d(nv, 0), qp(model.nq), qm(model.nq);
-  for (double& x : q) x = u(rng);
-  normalize_configuration<double>(model, q);
+  const std::vector<double> q = random_q_v(model, 5).first;
+  std::vector<double> d(nv, 0), qp(model.nq), qm(model.nq);
   std::vector<double> R(9 * nf), p(3 * nf), Rp(R.size()), pp(p.size()), Rm(R.size()), pm(p.size());
   std::vector<double> Jw(6 * nf * nv), Jl(Jw.size());
   frame_placements<double>(model, ws, q, R, p);
@@ -193,12 +203,8 @@ TEST_P(FrameJacobians, TimesVAreTheVelocitiesOfTheVelocityPass) {
   const Model<double> model = with_frames(GetParam().make());
   const int nv = model.nv, nf = static_cast<int>(model.frames.size());
   Workspace<double> ws(model);
-  std::mt19937_64 rng(8);
-  std::uniform_real_distribution<double> u(-1.5, 1.5);
-  std::vector<double> q(model.nq), v(nv), R(9 * nf), p(3 * nf), J(6 * nf * nv);
-  for (double& x : q) x = u(rng);
-  for (double& x : v) x = u(rng);
-  normalize_configuration<double>(model, q);
+  const auto [q, v] = random_q_v(model, 8);
+  std::vector<double> R(9 * nf), p(3 * nf), J(6 * nf * nv);
   frame_placements<double>(model, ws, q, R, p);
   frame_jacobians<double>(model, ws, q, JacobianAxes::World, J);
   forward_kinematics<double>(model, ws, q, v);
@@ -228,12 +234,8 @@ TEST_P(FrameJacobians, BiasAccelerationsAreTheDerivativeOfJAlongTheMotion) {
   const Model<double> model = with_frames(GetParam().make());
   const int nv = model.nv, nf = static_cast<int>(model.frames.size());
   Workspace<double> ws(model);
-  std::mt19937_64 rng(6);
-  std::uniform_real_distribution<double> u(-1.5, 1.5);
-  std::vector<double> q(model.nq), v(nv), d(nv), qp(model.nq), qm(model.nq);
-  for (double& x : q) x = u(rng);
-  for (double& x : v) x = u(rng);
-  normalize_configuration<double>(model, q);
+  const auto [q, v] = random_q_v(model, 6);
+  std::vector<double> d(nv), qp(model.nq), qm(model.nq);
   std::vector<double> R(9 * nf), p(3 * nf), Jp(6 * nf * nv), Jm(Jp.size()), world(6 * nf),
       local(6 * nf);
   frame_placements<double>(model, ws, q, R, p);

@@ -9,6 +9,7 @@
 #include <span>
 
 #include "dyngen/joint.hpp"
+#include "dyngen/kinematics.hpp"
 #include "dyngen/trace_hook.hpp"
 #include "dyngen/workspace.hpp"
 
@@ -25,9 +26,7 @@ template <class S>
 void body_placements(const Model<S>& model, Workspace<S>& ws, std::span<const S> q) {
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Kinematics);
-    const int p = model.parent[i];
-    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
-    ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
+    place_body(model, ws, q, i);
   }
 }
 
@@ -98,8 +97,7 @@ void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Velocity);
     const int p = model.parent[i];
-    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
-    ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
+    detail::place_body(model, ws, q, i);
     const Motion<S> vJ0 = apply_motion_inv(ws.X0[i], joint_motion(model, i, &v[model.v_index[i]]));
     if (p < 0) {
       ws.v[i] = vJ0;

@@ -92,15 +92,27 @@ void integrate(const Model<S>& model, std::span<const S> q, std::span<const S> d
   }
 }
 
+namespace detail {
+
+/// ws.Xup[i] and ws.X0[i] = X_i0, body i's transform from its parent and from the base at q,
+/// once its parent's X0 is known (bodies in topological order).
+template <class S>
+void place_body(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, int i) {
+  const int p = model.parent[i];
+  ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
+  ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
+}
+
+}  // namespace detail
+
 /// Body poses ws.X0 (base to body) and velocities ws.v (body coordinates) at q, v.
 template <class S>
 void forward_kinematics(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                         std::span<const S> v) {
   for (int i = 0; i < model.nbodies; ++i) {
     const int p = model.parent[i];
-    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
+    detail::place_body(model, ws, q, i);
     const Motion<S> vJ = joint_motion(model, i, &v[model.v_index[i]]);
-    ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
     ws.v[i] = p < 0 ? vJ : apply_motion(ws.Xup[i], ws.v[p]) + vJ;
   }
 }
