@@ -13,7 +13,8 @@
 //       measures the harness's own instructions per call
 //   dyngen_call_counts --report COUNTS OUTPUT_DIR
 //       callgrind.md and callgrind.json from COUNTS, lines "PACKAGE IMPLEMENTATION ALGORITHM
-//       CALLS IR" (IR: the instructions collected over the CALLS calls), with the operation
+//       CALLS IR I1MR" (the instructions and the level-1 instruction-cache misses collected over
+//       the CALLS calls), with the operation
 //       counts of each function (work_counts.cpp's: live operations of the simplified trace for
 //       generated code, the unsimplified trace for the runtime, the counting scalar for the
 //       hand-written chain)
@@ -180,21 +181,25 @@ std::map<std::string, long> operation_counts(const Package& p, Algorithm a) {
 }
 
 int report(const std::string& counts_file, const std::filesystem::path& output) {
-  // instructions per call, by package, algorithm and implementation
-  std::map<std::string, std::map<std::string, std::map<std::string, double>>> ir;
+  // instructions and instruction-cache misses per call, by package, algorithm and implementation
+  using PerCall = std::map<std::string, std::map<std::string, std::map<std::string, double>>>;
+  PerCall ir, i1_misses;
   std::optional<double> overhead;
   std::ifstream in(counts_file);
   for (std::string line; std::getline(in, line);) {
     std::istringstream fields(line);
     std::string package, implementation, algorithm;
     long calls = 0;
-    double total = 0;
-    if (!(fields >> package >> implementation >> algorithm >> calls >> total) || calls <= 0)
+    double total = 0, misses = 0;
+    if (!(fields >> package >> implementation >> algorithm >> calls >> total >> misses) ||
+        calls <= 0)
       throw std::runtime_error(counts_file + ": bad line '" + line + "'");
-    if (implementation == "none")
+    if (implementation == "none") {
       overhead = total / calls;
-    else
+    } else {
       ir[package][algorithm][implementation] = total / calls;
+      i1_misses[package][algorithm][implementation] = misses / calls;
+    }
   }
 
   std::string md =
@@ -207,7 +212,13 @@ int report(const std::string& counts_file, const std::filesystem::path& output) 
       "*generated*, which is `--structure shared`); *runtime*: `dyngen::rnea`, `crba`, `aba` on `Model<double>`; "
       "*hand-written*: bench/planar_reference.hpp (planar chains). *ops*: operations per call "
       "(add, mul, div, neg, sin and cos, as dyngen_work_counts counts them); *Ir/op*: "
-      "instructions per operation, loads, stores, calls and sin/cos included.";
+      "instructions per operation, loads, stores, calls and sin/cos included; *I1 misses*: "
+      "level-1 instruction-cache misses per call in callgrind's simulation of this machine's "
+      "cache (32 KB, 8 ways, 64-byte lines), the harness's code between the calls included. A "
+      "function whose code fits misses about once per 64 bytes of code over all the calls "
+      "(under 10 per call here); one that does not fit misses about once per 64 bytes in every "
+      "call, and runs slower by up to half for the same instructions (docs/performance.md, "
+      "\"Code size and the instruction cache\").";
   if (overhead)
     md += fmt::format(
         " Each figure includes the harness's {:.0f} instructions per call (an "
@@ -216,10 +227,14 @@ int report(const std::string& counts_file, const std::filesystem::path& output) 
   md +=
       "\n\n| package | algorithm | Ir: generated | snapped | unrolled | runtime | hand-written | "
       "runtime / generated | unrolled / generated | hand-written / generated | ops: generated | "
-      "runtime | hand-written | Ir/op: generated | runtime | hand-written |\n"
-      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      "runtime | hand-written | Ir/op: generated | runtime | hand-written | I1 misses: generated "
+      "| snapped | unrolled | runtime |\n"
+      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+      "---:|---:|\n";
   nlohmann::json json = {
-      {"description", "instructions per call (callgrind Ir) and operations per call"},
+      {"description",
+       "instructions per call (callgrind Ir), level-1 instruction-cache misses per call "
+       "(callgrind I1mr; 32 KB, 8 ways, 64-byte lines) and operations per call"},
       {"harness_ir_per_call", overhead ? nlohmann::json(*overhead) : nullptr},
       {"functions", nlohmann::json::array()}};
   for (const Package& p : packages()) {
@@ -244,10 +259,14 @@ int report(const std::string& counts_file, const std::filesystem::path& output) 
         row += ops.count(x) ? fmt::format(" {} |", ops.at(x)) : " - |";
       for (const char* x : {"generated", "runtime", "hand-written"})
         row += fmt::format(" {} |", ops.count(x) ? cell(per_call, x, "{:.2f}", ops.at(x)) : "-");
+      const std::map<std::string, double>& misses = i1_misses[p.name][name];
+      for (const char* x : {"generated", "snapped", "unrolled", "runtime"})
+        row += fmt::format(" {} |", cell(misses, x, "{:.1f}"));
       md += row + "\n";
       json["functions"].push_back({{"package", p.name},
                                    {"algorithm", name},
                                    {"ir_per_call", per_call},
+                                   {"i1_misses_per_call", misses},
                                    {"ops_per_call", ops}});
     }
   }

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Instructions per call (bench/README.md, "Work counts and instruction counts"): builds
-# dyngen_call_counts (with it the generated code of every package dyngen_bench times), runs each
-# function of each package under valgrind --tool=callgrind and writes callgrind.md and
-# callgrind.json.
+# Instructions and instruction-cache misses per call (bench/README.md, "Work counts and
+# instruction counts"): builds dyngen_call_counts (with it the generated code of every package
+# dyngen_bench times), runs each function of each package under valgrind --tool=callgrind with its
+# cache simulation and writes callgrind.md and callgrind.json.
 #
 #   scripts/callgrind.sh                        every package: generated, snapped, unrolled, runtime and
 #                                               hand-written code, into bench/results
@@ -28,13 +28,20 @@ tool=$build/bench/dyngen_call_counts
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 
-# instructions collected inside dyngen_measured_call over CALLS calls; LD_BIND_NOW resolves
-# every symbol at start-up, so that no first call pays the dynamic linker
+# instructions and level-1 instruction-cache misses collected inside dyngen_measured_call over
+# CALLS calls; LD_BIND_NOW resolves every symbol at start-up, so that no first call pays the
+# dynamic linker. The simulated caches are this machine's level 1 (32 KB, 8 ways, 64-byte lines),
+# given rather than detected, so that the counts do not depend on what valgrind recognises.
 count() {
   LD_BIND_NOW=1 valgrind --tool=callgrind --collect-atstart=no \
+    --cache-sim=yes --I1=32768,8,64 --D1=32768,8,64 --LL=1048576,16,64 \
     --toggle-collect=dyngen_measured_call --callgrind-out-file="$scratch/out" \
     "$tool" "$@" >/dev/null 2>"$scratch/log" || { cat "$scratch/log" >&2; exit 1; }
-  echo "$* $(sed -n 's/^summary: //p' "$scratch/out")" >>"$scratch/counts"
+  # summary: Ir Dr Dw I1mr D1mr D1mw ILmr DLmr DLmw
+  grep -qx 'events: Ir Dr Dw I1mr D1mr D1mw ILmr DLmr DLmw' "$scratch/out" ||
+    { echo "callgrind.sh: unexpected events in callgrind's output" >&2; exit 1; }
+  read -r ir _ _ i1_misses _ < <(sed -n 's/^summary: //p' "$scratch/out")
+  echo "$* $ir $i1_misses" >>"$scratch/counts"
 }
 
 packages=()
