@@ -311,7 +311,9 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   // are those of the unrolled code, so the bits are too.
   std::vector<Section> sections = sections_of(program, is_op);
   std::vector<std::vector<int>> groups;
-  if (structure == Structure::Shared) {
+  const long operations = std::count(is_op.begin(), is_op.end(), true);
+  if (structure == Structure::Shared ||
+      (structure == Structure::Auto && operations >= min_shared_function_operations)) {
     std::map<std::string, std::vector<int>> by_shape;
     for (std::size_t s = 0; s < sections.size(); ++s)
       if (sections[s].body >= 0) by_shape[sections[s].shape].push_back(static_cast<int>(s));

@@ -35,9 +35,17 @@ std::string literal(float value);
 /// How a function's code is laid out. Unrolled: every link's sections in place, one statement
 /// per operation. Shared: sections of the same shape (the same operations on other
 /// constants, as a left and a right leg, or a chain's links) call one function with a table of
-/// their constants, so the code grows with the number of shapes rather than links. Both
+/// their constants, so the code grows with the number of shapes rather than links. Auto:
+/// shared in a function of at least min_shared_function_operations, unrolled below. All
 /// perform the same operations in the same order.
-enum class Structure { Unrolled, Shared };
+enum class Structure { Unrolled, Shared, Auto };
+
+/// Below this many operations a function's straight-line code (about 12 bytes of x86-64 per
+/// operation) fits the instruction cache and sharing only adds calls and gathers: in the
+/// benchmarks no function under 1,800 operations ran faster shared beyond the noise, and
+/// planar chains and solo12's floating CRBA ran 14 to 32% slower; from 1,844 on, sharing
+/// gained up to 1.9 times (docs/performance.md, "Code structure").
+inline constexpr long min_shared_function_operations = 1800;
 
 /// Sections smaller than this stay in place under Structure::Shared: gathering a section's
 /// inputs and calling costs about as much as a few dozen operations (docs/performance.md,

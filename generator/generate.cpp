@@ -99,7 +99,7 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
   for (const FunctionCounts& c : counts) {
     text += fmt::format("\n  {}\n    generated: {}\n    runtime:   {}", c.algorithm,
                         to_string(c.generated), to_string(c.runtime));
-    if (options.structure == Structure::Shared)
+    if (options.structure != Structure::Unrolled)
       text += fmt::format("\n    {} of {} link sections in {} shared functions",
                           c.shared_sections, c.sections, c.shared_functions);
   }
@@ -386,9 +386,11 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   const std::string gravity = fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z));
 
   const std::string sincos = single ? "dyngen_sincosf" : "dyngen_sincos";
-  const std::string structure = options.structure == Structure::Shared
-                                    ? "repeated link sections call shared functions"
-                                    : "every link section in place";
+  const std::string structure =
+      options.structure == Structure::Shared ? "repeated link sections call shared functions"
+      : options.structure == Structure::Auto
+          ? "big functions' repeated link sections call shared functions"
+          : "every link section in place";
   const std::string header = ns + (dialect.c() ? "_dynamics.h" : "_dynamics.hpp");
   const std::string source = ns + (dialect.c() ? "_dynamics.c" : "_dynamics.cpp");
   // the package's files under a banner

@@ -34,7 +34,7 @@ struct GenerateOptions {
   Language language = Language::Cpp;
   std::vector<Algorithm> algorithms{"rnea", "crba", "aba"};
   bool single_precision = false;        // float instead of double
-  Structure structure = Structure::Shared;
+  Structure structure = Structure::Auto;
   Target target = Target::Host;
   bool measure = false;                 // compile for the target and record code and stack
   std::string options_text;             // the options as given, for the banner

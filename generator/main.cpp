@@ -211,7 +211,7 @@ struct ModelFlags {
 
 /// The options that choose the code, shared by generation and firmware-report.
 struct CodeFlags {
-  std::string algorithms = "rnea,crba,aba", scalar = "double", name, structure = "shared",
+  std::string algorithms = "rnea,crba,aba", scalar = "double", name, structure = "auto",
               target = "host", lang = "c++", jacobian_frame = "world";
 
   void add_to(CLI::App& app, bool firmware) {
@@ -238,8 +238,10 @@ struct CodeFlags {
     app.add_option("--structure", structure,
                    "shared: sections of links whose code differs only in constants share one "
                    "function over a table of them (smaller code, the same operations and bits); "
-                   "unrolled: every link's code in place")
-        ->check(CLI::IsMember({"unrolled", "shared"}))
+                   "unrolled: every link's code in place; auto: on the host, shared in functions "
+                   "of 1800 operations or more and unrolled below (where the code fits the "
+                   "instruction cache), on a Cortex-M shared (flash)")
+        ->check(CLI::IsMember({"auto", "unrolled", "shared"}))
         ->capture_default_str();
     if (firmware) {
       target = "cortex-m4f";
@@ -274,11 +276,14 @@ struct CodeFlags {
     options.algorithms = with_jacobian_frame(parse_algorithms(algorithms, algorithm_names()),
                                              jacobian_frame, algorithm_names());
     options.single_precision = scalar == "float";
-    options.structure = structure == "shared" ? Structure::Shared : Structure::Unrolled;
     options.language = lang == "c" ? Language::C : Language::Cpp;
     options.target = static_cast<Target>(
         std::find(std::begin(target_names), std::end(target_names), target) -
         std::begin(target_names));
+    options.structure = structure == "shared"     ? Structure::Shared
+                        : structure == "unrolled" ? Structure::Unrolled
+                        : options.target == Target::Host ? Structure::Auto
+                                                         : Structure::Shared;
     options.measure = options.target != Target::Host;
     options.name = identifier(name.empty() ? robot.name : name);
     const Vec3<double>& g = robot.model.gravity;

@@ -347,6 +347,31 @@ TEST(SharedStructure, RunsEveryOperationOfTheUnrolledCodeOnce) {
   }
 }
 
+// Auto: code that fits the instruction cache stays in place; bigger code is shared
+TEST(SharedStructure, AutoSharesOnlyBigFunctions) {
+  int big_functions = 0, small_functions = 0;
+  for (const bool floating : {false, true}) {
+    LoadOptions load;
+    load.floating_base = floating;
+    const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", load);
+    for (const Algorithm a : {"rnea", "crba", "aba"}) {
+      const Program<double> program = trace<double>(a, robot.model);
+      const std::string what = a + (floating ? " floating" : "");
+      const OpCounts ops = count_ops(program);  // sin and cos come from joint_trig
+      const bool big = ops.total() - ops.sin - ops.cos >= min_shared_function_operations;
+      const EmittedCode automatic = emit_code(program, robot.model, Structure::Auto);
+      const EmittedCode chosen =
+          emit_code(program, robot.model, big ? Structure::Shared : Structure::Unrolled);
+      EXPECT_EQ(automatic.body, chosen.body) << what;
+      EXPECT_EQ(automatic.helpers, chosen.helpers) << what;
+      EXPECT_EQ(automatic.shared_functions > 0, big) << what;
+      ++(big ? big_functions : small_functions);
+    }
+  }
+  EXPECT_GT(big_functions, 0);
+  EXPECT_GT(small_functions, 0);
+}
+
 TEST(GeneratedPackage, CopiesTheRuntimeSinCosVerbatim) {
   std::ifstream in(std::string(DYNGEN_SOURCE_DIR) + "/runtime/include/dyngen/sincos.h");
   const std::string runtime((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
