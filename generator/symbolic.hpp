@@ -219,10 +219,8 @@ int Graph<T>::binary(Op op, int x, int y) {
         break;
       default: break;
     }
-    // x + y = y + x and x * y = y * x exactly: one node for both orders, the constant first
-    // and otherwise the older value first, so that mirrored limbs, whose constants were
-    // interned at different times, read the same and share code (emit.hpp, Structure::Shared)
-    if ((op == Op::Add || op == Op::Mul) && (cy != cx ? cy : y < x)) std::swap(x, y);
+    // x + y = y + x and x * y = y * x exactly: one node for both orders
+    if ((op == Op::Add || op == Op::Mul) && y < x) std::swap(x, y);
   }
   return intern({op, x, y}, Key{op, x, y, 0});
 }

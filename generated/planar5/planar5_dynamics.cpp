@@ -284,7 +284,7 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double link5_9 = 0.05505 + link5_6;
 
     // ---- link 'link4' (3) <- 'link3' (2); joint 'link4_joint': prismatic axis (1, 0, 0); a descendant's column of M carried up
-    const double link4_1 = (-0.084) * trig.sin_q[4];
+    const double link4_1 = trig.sin_q[4] * (-0.084);
     const double link4_2 = 0.027520000000000003 + link5_4;
 
     // ---- link 'link3' (2) <- 'link2' (1); joint 'link3_joint': revolute +z; a descendant's column of M carried up
@@ -337,7 +337,7 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double link3_5 = trig.cos_q[2] * link5_8;
     const double link3_6 = trig.sin_q[2] * link4_9;
     const double link3_7 = link3_5 + link3_6;
-    const double link3_8 = 1.2000000000000002 + link3_4;
+    const double link3_8 = link3_4 + 1.2000000000000002;
     const double link3_9 = 0.8 * link3_8;
     const double link3_10 = 0.8 * link3_4;
     const double link3_11 = link3_9 + link3_10;
@@ -491,17 +491,17 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
 
     // ---- link 'link5' (4) <- 'link4' (3); joint 'link5_joint': revolute +z; articulated inertia pass
     const double link5_20 = tau[4] - link5_17;
-    const double link5_21 = 3.0523255813953485 * link5_20;
+    const double link5_21 = link5_20 * 3.0523255813953485;
     const double link5_22 = 0.3 * link5_9;
-    const double link5_23 = (-0.04360465116279072) * link5_10;
+    const double link5_23 = link5_10 * (-0.04360465116279072);
     const double link5_24 = link5_22 - link5_18;
     const double link5_25 = link5_19 + link5_23;
     const double link5_26 = link5_17 + link5_20;
     const double link5_27 = link5_21 + link5_25;
     const double link5_28 = 0.3 * trig.cos_q[4];
-    const double link5_29 = (-0.04360465116279072) * trig.sin_q[4];
+    const double link5_29 = trig.sin_q[4] * (-0.04360465116279072);
     const double link5_30 = 0.3 * trig.sin_q[4];
-    const double link5_31 = 0.04360465116279072 * trig.cos_q[4];
+    const double link5_31 = trig.cos_q[4] * 0.04360465116279072;
     const double link5_32 = trig.sin_q[4] * link5_29;
     const double link5_33 = trig.cos_q[4] * link5_28;
     const double link5_34 = link5_33 - link5_32;
@@ -513,7 +513,7 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double link5_40 = link5_39 - link5_38;
     const double link5_41 = 0.5 * link5_40;
     const double link5_42 = 0.5 * link5_37;
-    const double link5_43 = (-0.5) * link5_42;
+    const double link5_43 = link5_42 * (-0.5);
     const double link5_44 = 0.05505 - link5_43;
     const double link5_45 = (-0.005) + link5_41;
     const double link5_46 = 0.15 + link5_42;
@@ -644,7 +644,7 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double link3_80 = 0.8 * link3_60;
     const double link3_81 = 0.8 * link3_79;
     const double link3_82 = 0.8 * link3_76;
-    const double link3_83 = (-0.8) * link3_82;
+    const double link3_83 = link3_82 * (-0.8);
     const double link3_84 = link3_57 + link3_81;
     const double link3_85 = link3_60 + link3_82;
     const double link3_86 = link3_26 + link3_80;

@@ -115,15 +115,15 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double upper_arm_link_23 = upper_arm_link_14 - upper_arm_link_10;
     const double upper_arm_link_24 = upper_arm_link_11 + upper_arm_link_18;
     const double upper_arm_link_25 = upper_arm_link_21 - upper_arm_link_12;
-    const double upper_arm_link_26 = (-2.3500400000000004) * upper_arm_link_7;
-    const double upper_arm_link_27 = (-0.8849018759100001) * upper_arm_link_4;
+    const double upper_arm_link_26 = upper_arm_link_7 * (-2.3500400000000004);
+    const double upper_arm_link_27 = upper_arm_link_4 * (-0.8849018759100001);
     const double upper_arm_link_28 = 0.8849018759100001 * v[1];
     const double upper_arm_link_29 = 0.0151074 * upper_arm_link_5;
     const double upper_arm_link_30 = upper_arm_link_26 + upper_arm_link_28;
     const double upper_arm_link_31 = 2.3500400000000004 * v[1];
-    const double upper_arm_link_32 = (-2.3500400000000004) * upper_arm_link_4;
-    const double upper_arm_link_33 = (-8.393) * upper_arm_link_7;
-    const double upper_arm_link_34 = (-8.393) * upper_arm_link_8;
+    const double upper_arm_link_32 = upper_arm_link_4 * (-2.3500400000000004);
+    const double upper_arm_link_33 = upper_arm_link_7 * (-8.393);
+    const double upper_arm_link_34 = upper_arm_link_8 * (-8.393);
     const double upper_arm_link_35 = upper_arm_link_31 + upper_arm_link_33;
     const double upper_arm_link_36 = upper_arm_link_8 * upper_arm_link_32;
     const double upper_arm_link_37 = upper_arm_link_7 * upper_arm_link_34;
@@ -149,7 +149,7 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double upper_arm_link_57 = upper_arm_link_4 * upper_arm_link_32;
     const double upper_arm_link_58 = upper_arm_link_57 - upper_arm_link_56;
     const double upper_arm_link_59 = 2.3500400000000004 * upper_arm_link_24;
-    const double upper_arm_link_60 = (-0.8849018759100001) * upper_arm_link_22;
+    const double upper_arm_link_60 = upper_arm_link_22 * (-0.8849018759100001);
     const double upper_arm_link_61 = 0.8849018759100001 * a[1];
     const double upper_arm_link_62 = 0.0151074 * upper_arm_link_23;
     const double upper_arm_link_63 = upper_arm_link_59 + upper_arm_link_61;
@@ -173,8 +173,8 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double forearm_link_6 = 0.425 * v[1];
     const double forearm_link_7 = (-0.1197) * upper_arm_link_5;
     const double forearm_link_8 = forearm_link_7 - forearm_link_6;
-    const double forearm_link_9 = (-0.425) * upper_arm_link_4;
-    const double forearm_link_10 = 0.1197 * upper_arm_link_4;
+    const double forearm_link_9 = upper_arm_link_4 * (-0.425);
+    const double forearm_link_10 = upper_arm_link_4 * 0.1197;
     const double forearm_link_11 = upper_arm_link_7 + forearm_link_8;
     const double forearm_link_12 = forearm_link_10 - upper_arm_link_8;
     const double forearm_link_13 = trig.sin_q[2] * forearm_link_12;
@@ -197,8 +197,8 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double forearm_link_30 = 0.425 * a[1];
     const double forearm_link_31 = (-0.1197) * upper_arm_link_23;
     const double forearm_link_32 = forearm_link_31 - forearm_link_30;
-    const double forearm_link_33 = (-0.425) * upper_arm_link_22;
-    const double forearm_link_34 = 0.1197 * upper_arm_link_22;
+    const double forearm_link_33 = upper_arm_link_22 * (-0.425);
+    const double forearm_link_34 = upper_arm_link_22 * 0.1197;
     const double forearm_link_35 = upper_arm_link_24 - forearm_link_32;
     const double forearm_link_36 = upper_arm_link_25 + forearm_link_34;
     const double forearm_link_37 = trig.sin_q[2] * forearm_link_36;
@@ -212,17 +212,17 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double forearm_link_45 = forearm_link_29 - forearm_link_21;
     const double forearm_link_46 = forearm_link_39 - forearm_link_22;
     const double forearm_link_47 = forearm_link_42 - forearm_link_23;
-    const double forearm_link_48 = (-0.56875) * forearm_link_9;
-    const double forearm_link_49 = (-0.56875) * forearm_link_15;
-    const double forearm_link_50 = (-0.19163081355599998) * forearm_link_2;
+    const double forearm_link_48 = forearm_link_9 * (-0.56875);
+    const double forearm_link_49 = forearm_link_15 * (-0.56875);
+    const double forearm_link_50 = forearm_link_2 * (-0.19163081355599998);
     const double forearm_link_51 = 0.19163081355599998 * forearm_link_19;
     const double forearm_link_52 = 0.004095 * forearm_link_5;
     const double forearm_link_53 = forearm_link_50 - forearm_link_48;
     const double forearm_link_54 = forearm_link_49 + forearm_link_51;
     const double forearm_link_55 = 0.56875 * forearm_link_19;
-    const double forearm_link_56 = (-0.56875) * forearm_link_2;
-    const double forearm_link_57 = (-2.275) * forearm_link_15;
-    const double forearm_link_58 = (-2.275) * forearm_link_9;
+    const double forearm_link_56 = forearm_link_2 * (-0.56875);
+    const double forearm_link_57 = forearm_link_15 * (-2.275);
+    const double forearm_link_58 = forearm_link_9 * (-2.275);
     const double forearm_link_59 = 2.275 * forearm_link_18;
     const double forearm_link_60 = forearm_link_55 + forearm_link_57;
     const double forearm_link_61 = forearm_link_58 - forearm_link_56;
@@ -256,17 +256,17 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double forearm_link_89 = forearm_link_19 * forearm_link_60;
     const double forearm_link_90 = forearm_link_2 * forearm_link_61;
     const double forearm_link_91 = forearm_link_89 + forearm_link_90;
-    const double forearm_link_92 = (-0.56875) * forearm_link_33;
+    const double forearm_link_92 = forearm_link_33 * (-0.56875);
     const double forearm_link_93 = 0.56875 * forearm_link_46;
-    const double forearm_link_94 = (-0.19163081355599998) * forearm_link_44;
+    const double forearm_link_94 = forearm_link_44 * (-0.19163081355599998);
     const double forearm_link_95 = 0.19163081355599998 * forearm_link_43;
     const double forearm_link_96 = 0.004095 * forearm_link_45;
     const double forearm_link_97 = forearm_link_94 - forearm_link_92;
     const double forearm_link_98 = forearm_link_93 + forearm_link_95;
     const double forearm_link_99 = 0.56875 * forearm_link_43;
-    const double forearm_link_100 = (-0.56875) * forearm_link_44;
+    const double forearm_link_100 = forearm_link_44 * (-0.56875);
     const double forearm_link_101 = 2.275 * forearm_link_46;
-    const double forearm_link_102 = (-2.275) * forearm_link_33;
+    const double forearm_link_102 = forearm_link_33 * (-2.275);
     const double forearm_link_103 = 2.275 * forearm_link_47;
     const double forearm_link_104 = forearm_link_99 + forearm_link_101;
     const double forearm_link_105 = forearm_link_102 - forearm_link_100;
@@ -289,7 +289,7 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double wrist_1_link_8 = forearm_link_2 * wrist_1_link_3;
     const double wrist_1_link_9 = wrist_1_link_7 - wrist_1_link_8;
     const double wrist_1_link_10 = 0.39225 * forearm_link_19;
-    const double wrist_1_link_11 = (-0.39225) * forearm_link_2;
+    const double wrist_1_link_11 = forearm_link_2 * (-0.39225);
     const double wrist_1_link_12 = wrist_1_link_10 - forearm_link_15;
     const double wrist_1_link_13 = forearm_link_9 + wrist_1_link_11;
     const double wrist_1_link_14 = forearm_link_18 * wrist_1_link_3;
@@ -310,7 +310,7 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double wrist_1_link_29 = forearm_link_44 * wrist_1_link_3;
     const double wrist_1_link_30 = wrist_1_link_28 - wrist_1_link_29;
     const double wrist_1_link_31 = 0.39225 * forearm_link_43;
-    const double wrist_1_link_32 = (-0.39225) * forearm_link_44;
+    const double wrist_1_link_32 = forearm_link_44 * (-0.39225);
     const double wrist_1_link_33 = forearm_link_46 + wrist_1_link_31;
     const double wrist_1_link_34 = forearm_link_33 + wrist_1_link_32;
     const double wrist_1_link_35 = forearm_link_47 * wrist_1_link_3;
@@ -324,11 +324,11 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double wrist_1_link_43 = wrist_1_link_30 - wrist_1_link_22;
     const double wrist_1_link_44 = wrist_1_link_37 - wrist_1_link_23;
     const double wrist_1_link_45 = wrist_1_link_24 + wrist_1_link_40;
-    const double wrist_1_link_46 = (-0.111172755531) * wrist_1_link_6;
+    const double wrist_1_link_46 = wrist_1_link_6 * (-0.111172755531);
     const double wrist_1_link_47 = 0.111172755531 * wrist_1_link_20;
     const double wrist_1_link_48 = 0.21942 * wrist_1_link_9;
     const double wrist_1_link_49 = 1.219 * wrist_1_link_16;
-    const double wrist_1_link_50 = (-1.219) * wrist_1_link_13;
+    const double wrist_1_link_50 = wrist_1_link_13 * (-1.219);
     const double wrist_1_link_51 = 1.219 * wrist_1_link_19;
     const double wrist_1_link_52 = wrist_1_link_19 * wrist_1_link_50;
     const double wrist_1_link_53 = wrist_1_link_13 * wrist_1_link_51;
@@ -360,11 +360,11 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double wrist_1_link_79 = wrist_1_link_20 * wrist_1_link_49;
     const double wrist_1_link_80 = wrist_1_link_6 * wrist_1_link_50;
     const double wrist_1_link_81 = wrist_1_link_79 + wrist_1_link_80;
-    const double wrist_1_link_82 = (-0.111172755531) * wrist_1_link_42;
+    const double wrist_1_link_82 = wrist_1_link_42 * (-0.111172755531);
     const double wrist_1_link_83 = 0.111172755531 * wrist_1_link_41;
     const double wrist_1_link_84 = 0.21942 * wrist_1_link_43;
     const double wrist_1_link_85 = 1.219 * wrist_1_link_44;
-    const double wrist_1_link_86 = (-1.219) * wrist_1_link_34;
+    const double wrist_1_link_86 = wrist_1_link_34 * (-1.219);
     const double wrist_1_link_87 = 1.219 * wrist_1_link_45;
     const double wrist_1_link_88 = wrist_1_link_70 + wrist_1_link_82;
     const double wrist_1_link_89 = wrist_1_link_71 + wrist_1_link_83;
@@ -381,7 +381,7 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double wrist_2_link_4 = wrist_1_link_6 * trig.sin_q[4];
     const double wrist_2_link_5 = wrist_2_link_3 + wrist_2_link_4;
     const double wrist_2_link_6 = 0.093 * wrist_1_link_9;
-    const double wrist_2_link_7 = (-0.093) * wrist_1_link_6;
+    const double wrist_2_link_7 = wrist_1_link_6 * (-0.093);
     const double wrist_2_link_8 = wrist_1_link_16 - wrist_2_link_6;
     const double wrist_2_link_9 = wrist_1_link_19 + wrist_2_link_7;
     const double wrist_2_link_10 = wrist_1_link_13 * trig.sin_q[4];
@@ -402,7 +402,7 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double wrist_2_link_25 = wrist_1_link_42 * trig.sin_q[4];
     const double wrist_2_link_26 = wrist_2_link_24 + wrist_2_link_25;
     const double wrist_2_link_27 = 0.093 * wrist_1_link_43;
-    const double wrist_2_link_28 = (-0.093) * wrist_1_link_42;
+    const double wrist_2_link_28 = wrist_1_link_42 * (-0.093);
     const double wrist_2_link_29 = wrist_1_link_44 - wrist_2_link_27;
     const double wrist_2_link_30 = wrist_1_link_45 + wrist_2_link_28;
     const double wrist_2_link_31 = wrist_1_link_34 * trig.sin_q[4];
@@ -512,7 +512,7 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double wrist_3_link_43 = 0.0171364731454 * wrist_3_link_16;
     const double wrist_3_link_44 = 0.033822 * wrist_3_link_5;
     const double wrist_3_link_45 = 0.1879 * wrist_3_link_12;
-    const double wrist_3_link_46 = (-0.1879) * wrist_3_link_9;
+    const double wrist_3_link_46 = wrist_3_link_9 * (-0.1879);
     const double wrist_3_link_47 = 0.1879 * wrist_3_link_15;
     const double wrist_3_link_48 = wrist_3_link_15 * wrist_3_link_46;
     const double wrist_3_link_49 = wrist_3_link_9 * wrist_3_link_47;
@@ -548,7 +548,7 @@ void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], co
     const double wrist_3_link_79 = 0.0171364731454 * wrist_3_link_37;
     const double wrist_3_link_80 = 0.033822 * wrist_3_link_39;
     const double wrist_3_link_81 = 0.1879 * wrist_3_link_40;
-    const double wrist_3_link_82 = (-0.1879) * wrist_3_link_30;
+    const double wrist_3_link_82 = wrist_3_link_30 * (-0.1879);
     const double wrist_3_link_83 = 0.1879 * wrist_3_link_41;
     const double wrist_3_link_84 = wrist_3_link_66 + wrist_3_link_78;
     const double wrist_3_link_85 = wrist_3_link_67 + wrist_3_link_79;
@@ -705,7 +705,7 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; composite inertia
     const double wrist_3_link_0 = 0.0171364731454 * trig.cos_q[5];
     const double wrist_3_link_1 = 0.033822 * trig.sin_q[5];
-    const double wrist_3_link_2 = (-0.0171364731454) * trig.sin_q[5];
+    const double wrist_3_link_2 = trig.sin_q[5] * (-0.0171364731454);
     const double wrist_3_link_3 = 0.033822 * trig.cos_q[5];
     const double wrist_3_link_4 = trig.sin_q[5] * wrist_3_link_1;
     const double wrist_3_link_5 = trig.cos_q[5] * wrist_3_link_0;
@@ -716,14 +716,14 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double wrist_3_link_10 = trig.sin_q[5] * wrist_3_link_3;
     const double wrist_3_link_11 = trig.cos_q[5] * wrist_3_link_2;
     const double wrist_3_link_12 = wrist_3_link_10 + wrist_3_link_11;
-    const double wrist_3_link_13 = 0.00168332516775 + wrist_3_link_6;
+    const double wrist_3_link_13 = wrist_3_link_6 + 0.00168332516775;
     const double wrist_3_link_14 = wrist_3_link_9 - 0.00168332516775;
     const double wrist_3_link_15 = 0.00168332516775 + wrist_3_link_14;
     const double wrist_3_link_16 = 0.111172755531 + wrist_3_link_13;
     const double wrist_3_link_17 = 0.21942 + wrist_3_link_15;
 
     // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; a descendant's column of M carried up
-    const double wrist_1_link_4 = (-0.0171364731454) * trig.sin_q[4];
+    const double wrist_1_link_4 = trig.sin_q[4] * (-0.0171364731454);
     const double wrist_1_link_5 = 0.0171364731454 * trig.cos_q[4];
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
@@ -746,10 +746,10 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
 
     // ---- link 'wrist_2_link' (4) <- 'wrist_1_link' (3); joint 'wrist_2_joint': revolute +z; composite inertia
     const double wrist_2_link_0 = trig.cos_q[4] * wrist_3_link_16;
-    const double wrist_2_link_1 = (-0.12999255384415) * trig.sin_q[4];
+    const double wrist_2_link_1 = trig.sin_q[4] * (-0.12999255384415);
     const double wrist_2_link_2 = trig.cos_q[4] * wrist_3_link_12;
     const double wrist_2_link_3 = trig.sin_q[4] * wrist_3_link_16;
-    const double wrist_2_link_4 = 0.12999255384415 * trig.cos_q[4];
+    const double wrist_2_link_4 = trig.cos_q[4] * 0.12999255384415;
     const double wrist_2_link_5 = trig.sin_q[4] * wrist_3_link_12;
     const double wrist_2_link_6 = trig.sin_q[4] * wrist_2_link_1;
     const double wrist_2_link_7 = trig.cos_q[4] * wrist_2_link_0;
@@ -760,10 +760,10 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double wrist_2_link_12 = trig.sin_q[4] * wrist_2_link_4;
     const double wrist_2_link_13 = trig.cos_q[4] * wrist_2_link_3;
     const double wrist_2_link_14 = wrist_2_link_13 - wrist_2_link_12;
-    const double wrist_2_link_15 = 0.0121682781 + wrist_2_link_8;
+    const double wrist_2_link_15 = wrist_2_link_8 + 0.0121682781;
     const double wrist_2_link_16 = wrist_2_link_11 - 0.0121682781;
     const double wrist_2_link_17 = 0.0121682781 + wrist_2_link_16;
-    const double wrist_2_link_18 = 0.0121682781 + wrist_3_link_17;
+    const double wrist_2_link_18 = wrist_3_link_17 + 0.0121682781;
     const double wrist_2_link_19 = wrist_2_link_5 - 0.0016539803549999999;
     const double wrist_2_link_20 = 0.111172755531 + wrist_2_link_15;
     const double wrist_2_link_21 = 0.111172755531 + wrist_2_link_17;
@@ -791,9 +791,9 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double shoulder_link_6 = shoulder_link_4 - shoulder_link_5;
 
     // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; composite inertia
-    const double wrist_1_link_6 = 0.017784735 * wrist_1_link_3;
-    const double wrist_1_link_7 = 0.017784735 * wrist_1_link_1;
-    const double wrist_1_link_8 = 1.030009275 + wrist_1_link_7;
+    const double wrist_1_link_6 = wrist_1_link_3 * 0.017784735;
+    const double wrist_1_link_7 = wrist_1_link_1 * 0.017784735;
+    const double wrist_1_link_8 = wrist_1_link_7 + 1.030009275;
     const double wrist_1_link_9 = wrist_1_link_1 * wrist_2_link_20;
     const double wrist_1_link_10 = forearm_link_6 + wrist_1_link_9;
     const double wrist_1_link_11 = wrist_1_link_3 * wrist_2_link_19;
@@ -834,7 +834,7 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double wrist_1_link_46 = 0.004095 + wrist_1_link_39;
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
-    const double forearm_link_8 = (-0.017784735) * wrist_1_link_3;
+    const double forearm_link_8 = wrist_1_link_3 * (-0.017784735);
     const double forearm_link_9 = wrist_2_link_21 + wrist_1_link_33;
 
     // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
@@ -874,7 +874,7 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double forearm_link_13 = trig.cos_q[2] * wrist_1_link_43;
     const double forearm_link_14 = trig.sin_q[2] * wrist_1_link_6;
     const double forearm_link_15 = forearm_link_13 - forearm_link_14;
-    const double forearm_link_16 = 2.0828824999999997 + forearm_link_15;
+    const double forearm_link_16 = forearm_link_15 + 2.0828824999999997;
     const double forearm_link_17 = trig.sin_q[2] * wrist_1_link_41;
     const double forearm_link_18 = trig.cos_q[2] * wrist_1_link_44;
     const double forearm_link_19 = forearm_link_17 + forearm_link_18;
@@ -899,9 +899,9 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double forearm_link_38 = trig.cos_q[2] * forearm_link_26;
     const double forearm_link_39 = forearm_link_37 + forearm_link_38;
     const double forearm_link_40 = 0.425 * forearm_link_16;
-    const double forearm_link_41 = 0.054558784790999994 + forearm_link_40;
+    const double forearm_link_41 = forearm_link_40 + 0.054558784790999994;
     const double forearm_link_42 = 0.425 * forearm_link_15;
-    const double forearm_link_43 = (-0.01566175149) + forearm_link_42;
+    const double forearm_link_43 = forearm_link_42 + (-0.01566175149);
     const double forearm_link_44 = forearm_link_41 + forearm_link_43;
     const double forearm_link_45 = forearm_link_33 + forearm_link_44;
     const double forearm_link_46 = wrist_1_link_45 - (-0.01566175149);
@@ -923,7 +923,7 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double forearm_link_62 = 0.0151074 + forearm_link_51;
 
     // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
-    const double upper_arm_link_34 = 0.1197 * forearm_link_12;
+    const double upper_arm_link_34 = forearm_link_12 * 0.1197;
     const double upper_arm_link_35 = (-0.1197) * forearm_link_15;
     const double upper_arm_link_36 = forearm_link_21 + upper_arm_link_34;
     const double upper_arm_link_37 = wrist_1_link_45 + forearm_link_42;
@@ -954,7 +954,7 @@ void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noe
     const double upper_arm_link_50 = upper_arm_link_1 * upper_arm_link_49;
     const double upper_arm_link_51 = upper_arm_link_3 * upper_arm_link_44;
     const double upper_arm_link_52 = upper_arm_link_50 - upper_arm_link_51;
-    const double upper_arm_link_53 = 0.12150210104175002 + upper_arm_link_52;
+    const double upper_arm_link_53 = upper_arm_link_52 + 0.12150210104175002;
     const double upper_arm_link_54 = 0.13585 * upper_arm_link_40;
     const double upper_arm_link_55 = upper_arm_link_47 - upper_arm_link_54;
     const double upper_arm_link_56 = 0.00666 + upper_arm_link_53;
@@ -1027,15 +1027,15 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double upper_arm_link_10 = v[1] * upper_arm_link_4;
     const double upper_arm_link_11 = v[1] * upper_arm_link_8;
     const double upper_arm_link_12 = v[1] * upper_arm_link_7;
-    const double upper_arm_link_13 = (-2.3500400000000004) * upper_arm_link_7;
-    const double upper_arm_link_14 = (-0.8849018759100001) * upper_arm_link_4;
+    const double upper_arm_link_13 = upper_arm_link_7 * (-2.3500400000000004);
+    const double upper_arm_link_14 = upper_arm_link_4 * (-0.8849018759100001);
     const double upper_arm_link_15 = 0.8849018759100001 * v[1];
     const double upper_arm_link_16 = 0.0151074 * upper_arm_link_5;
     const double upper_arm_link_17 = upper_arm_link_13 + upper_arm_link_15;
     const double upper_arm_link_18 = 2.3500400000000004 * v[1];
-    const double upper_arm_link_19 = (-2.3500400000000004) * upper_arm_link_4;
-    const double upper_arm_link_20 = (-8.393) * upper_arm_link_7;
-    const double upper_arm_link_21 = (-8.393) * upper_arm_link_8;
+    const double upper_arm_link_19 = upper_arm_link_4 * (-2.3500400000000004);
+    const double upper_arm_link_20 = upper_arm_link_7 * (-8.393);
+    const double upper_arm_link_21 = upper_arm_link_8 * (-8.393);
     const double upper_arm_link_22 = upper_arm_link_18 + upper_arm_link_20;
     const double upper_arm_link_23 = upper_arm_link_8 * upper_arm_link_19;
     const double upper_arm_link_24 = upper_arm_link_7 * upper_arm_link_21;
@@ -1071,8 +1071,8 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double forearm_link_6 = 0.425 * v[1];
     const double forearm_link_7 = (-0.1197) * upper_arm_link_5;
     const double forearm_link_8 = forearm_link_7 - forearm_link_6;
-    const double forearm_link_9 = (-0.425) * upper_arm_link_4;
-    const double forearm_link_10 = 0.1197 * upper_arm_link_4;
+    const double forearm_link_9 = upper_arm_link_4 * (-0.425);
+    const double forearm_link_10 = upper_arm_link_4 * 0.1197;
     const double forearm_link_11 = upper_arm_link_7 + forearm_link_8;
     const double forearm_link_12 = forearm_link_10 - upper_arm_link_8;
     const double forearm_link_13 = trig.sin_q[2] * forearm_link_12;
@@ -1086,17 +1086,17 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double forearm_link_21 = v[2] * forearm_link_2;
     const double forearm_link_22 = v[2] * forearm_link_18;
     const double forearm_link_23 = v[2] * forearm_link_15;
-    const double forearm_link_24 = (-0.56875) * forearm_link_9;
-    const double forearm_link_25 = (-0.56875) * forearm_link_15;
-    const double forearm_link_26 = (-0.19163081355599998) * forearm_link_2;
+    const double forearm_link_24 = forearm_link_9 * (-0.56875);
+    const double forearm_link_25 = forearm_link_15 * (-0.56875);
+    const double forearm_link_26 = forearm_link_2 * (-0.19163081355599998);
     const double forearm_link_27 = 0.19163081355599998 * forearm_link_19;
     const double forearm_link_28 = 0.004095 * forearm_link_5;
     const double forearm_link_29 = forearm_link_26 - forearm_link_24;
     const double forearm_link_30 = forearm_link_25 + forearm_link_27;
     const double forearm_link_31 = 0.56875 * forearm_link_19;
-    const double forearm_link_32 = (-0.56875) * forearm_link_2;
-    const double forearm_link_33 = (-2.275) * forearm_link_15;
-    const double forearm_link_34 = (-2.275) * forearm_link_9;
+    const double forearm_link_32 = forearm_link_2 * (-0.56875);
+    const double forearm_link_33 = forearm_link_15 * (-2.275);
+    const double forearm_link_34 = forearm_link_9 * (-2.275);
     const double forearm_link_35 = 2.275 * forearm_link_18;
     const double forearm_link_36 = forearm_link_31 + forearm_link_33;
     const double forearm_link_37 = forearm_link_34 - forearm_link_32;
@@ -1143,7 +1143,7 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_1_link_8 = forearm_link_2 * wrist_1_link_3;
     const double wrist_1_link_9 = wrist_1_link_7 - wrist_1_link_8;
     const double wrist_1_link_10 = 0.39225 * forearm_link_19;
-    const double wrist_1_link_11 = (-0.39225) * forearm_link_2;
+    const double wrist_1_link_11 = forearm_link_2 * (-0.39225);
     const double wrist_1_link_12 = wrist_1_link_10 - forearm_link_15;
     const double wrist_1_link_13 = forearm_link_9 + wrist_1_link_11;
     const double wrist_1_link_14 = forearm_link_18 * wrist_1_link_3;
@@ -1157,11 +1157,11 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_1_link_22 = v[3] * wrist_1_link_6;
     const double wrist_1_link_23 = v[3] * wrist_1_link_19;
     const double wrist_1_link_24 = v[3] * wrist_1_link_16;
-    const double wrist_1_link_25 = (-0.111172755531) * wrist_1_link_6;
+    const double wrist_1_link_25 = wrist_1_link_6 * (-0.111172755531);
     const double wrist_1_link_26 = 0.111172755531 * wrist_1_link_20;
     const double wrist_1_link_27 = 0.21942 * wrist_1_link_9;
     const double wrist_1_link_28 = 1.219 * wrist_1_link_16;
-    const double wrist_1_link_29 = (-1.219) * wrist_1_link_13;
+    const double wrist_1_link_29 = wrist_1_link_13 * (-1.219);
     const double wrist_1_link_30 = 1.219 * wrist_1_link_19;
     const double wrist_1_link_31 = wrist_1_link_19 * wrist_1_link_29;
     const double wrist_1_link_32 = wrist_1_link_13 * wrist_1_link_30;
@@ -1202,7 +1202,7 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_2_link_4 = wrist_1_link_6 * trig.sin_q[4];
     const double wrist_2_link_5 = wrist_2_link_3 + wrist_2_link_4;
     const double wrist_2_link_6 = 0.093 * wrist_1_link_9;
-    const double wrist_2_link_7 = (-0.093) * wrist_1_link_6;
+    const double wrist_2_link_7 = wrist_1_link_6 * (-0.093);
     const double wrist_2_link_8 = wrist_1_link_16 - wrist_2_link_6;
     const double wrist_2_link_9 = wrist_1_link_19 + wrist_2_link_7;
     const double wrist_2_link_10 = wrist_1_link_13 * trig.sin_q[4];
@@ -1279,7 +1279,7 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_3_link_22 = 0.0171364731454 * wrist_3_link_16;
     const double wrist_3_link_23 = 0.033822 * wrist_3_link_5;
     const double wrist_3_link_24 = 0.1879 * wrist_3_link_12;
-    const double wrist_3_link_25 = (-0.1879) * wrist_3_link_9;
+    const double wrist_3_link_25 = wrist_3_link_9 * (-0.1879);
     const double wrist_3_link_26 = 0.1879 * wrist_3_link_15;
     const double wrist_3_link_27 = wrist_3_link_15 * wrist_3_link_25;
     const double wrist_3_link_28 = wrist_3_link_9 * wrist_3_link_26;
@@ -1314,9 +1314,9 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
 
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; articulated inertia pass
     const double wrist_3_link_57 = tau[5] - wrist_3_link_46;
-    const double wrist_3_link_58 = (-0.0171364731454) * wrist_3_link_17;
+    const double wrist_3_link_58 = wrist_3_link_17 * (-0.0171364731454);
     const double wrist_3_link_59 = 0.033822 * wrist_3_link_18;
-    const double wrist_3_link_60 = (-0.1879) * wrist_3_link_19;
+    const double wrist_3_link_60 = wrist_3_link_19 * (-0.1879);
     const double wrist_3_link_61 = 0.1879 * wrist_3_link_20;
     const double wrist_3_link_62 = wrist_3_link_45 + wrist_3_link_58;
     const double wrist_3_link_63 = wrist_3_link_47 + wrist_3_link_59;
@@ -1325,7 +1325,7 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_3_link_66 = wrist_3_link_46 + wrist_3_link_57;
     const double wrist_3_link_67 = 0.0171364731454 * trig.cos_q[5];
     const double wrist_3_link_68 = 0.033822 * trig.sin_q[5];
-    const double wrist_3_link_69 = (-0.0171364731454) * trig.sin_q[5];
+    const double wrist_3_link_69 = trig.sin_q[5] * (-0.0171364731454);
     const double wrist_3_link_70 = 0.033822 * trig.cos_q[5];
     const double wrist_3_link_71 = trig.sin_q[5] * wrist_3_link_68;
     const double wrist_3_link_72 = trig.cos_q[5] * wrist_3_link_67;
@@ -1338,7 +1338,7 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_3_link_79 = wrist_3_link_77 + wrist_3_link_78;
     const double wrist_3_link_80 = 0.1879 * trig.cos_q[5];
     const double wrist_3_link_81 = 0.1879 * trig.sin_q[5];
-    const double wrist_3_link_82 = (-0.1879) * trig.sin_q[5];
+    const double wrist_3_link_82 = trig.sin_q[5] * (-0.1879);
     const double wrist_3_link_83 = trig.sin_q[5] * wrist_3_link_81;
     const double wrist_3_link_84 = trig.cos_q[5] * wrist_3_link_80;
     const double wrist_3_link_85 = wrist_3_link_83 + wrist_3_link_84;
@@ -1349,7 +1349,7 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_3_link_90 = wrist_3_link_88 + wrist_3_link_89;
     const double wrist_3_link_91 = 0.09465 * wrist_3_link_85;
     const double wrist_3_link_92 = 0.09465 * wrist_3_link_90;
-    const double wrist_3_link_93 = (-0.09465) * wrist_3_link_91;
+    const double wrist_3_link_93 = wrist_3_link_91 * (-0.09465);
     const double wrist_3_link_94 = wrist_3_link_73 - (-0.00168332516775);
     const double wrist_3_link_95 = 0.111172755531 + wrist_3_link_94;
     const double wrist_3_link_96 = 0.111172755531 - wrist_3_link_93;
@@ -1392,7 +1392,7 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_2_link_66 = wrist_3_link_79 - wrist_2_link_65;
     const double wrist_2_link_67 = wrist_2_link_58 * wrist_2_link_59;
     const double wrist_2_link_68 = wrist_2_link_58 * wrist_2_link_60;
-    const double wrist_2_link_69 = 0.017784735 * wrist_2_link_20;
+    const double wrist_2_link_69 = wrist_2_link_20 * 0.017784735;
     const double wrist_2_link_70 = wrist_2_link_19 * wrist_3_link_91;
     const double wrist_2_link_71 = wrist_2_link_17 * wrist_2_link_62;
     const double wrist_2_link_72 = wrist_2_link_18 * wrist_3_link_96;
@@ -1400,10 +1400,10 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_2_link_74 = wrist_2_link_69 + wrist_2_link_71;
     const double wrist_2_link_75 = wrist_2_link_70 + wrist_2_link_72;
     const double wrist_2_link_76 = wrist_2_link_19 * wrist_3_link_98;
-    const double wrist_2_link_77 = (-1.4069) * wrist_2_link_20;
+    const double wrist_2_link_77 = wrist_2_link_20 * (-1.4069);
     const double wrist_2_link_78 = wrist_2_link_19 * wrist_3_link_90;
     const double wrist_2_link_79 = wrist_2_link_18 * wrist_3_link_91;
-    const double wrist_2_link_80 = (-0.017784735) * wrist_2_link_17;
+    const double wrist_2_link_80 = wrist_2_link_17 * (-0.017784735);
     const double wrist_2_link_81 = wrist_2_link_18 * wrist_3_link_92;
     const double wrist_2_link_82 = wrist_2_link_76 + wrist_2_link_79;
     const double wrist_2_link_83 = wrist_2_link_77 + wrist_2_link_80;
@@ -1431,8 +1431,8 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_2_link_105 = trig.sin_q[4] * wrist_2_link_97;
     const double wrist_2_link_106 = trig.cos_q[4] * wrist_2_link_96;
     const double wrist_2_link_107 = wrist_2_link_106 - wrist_2_link_105;
-    const double wrist_2_link_108 = 0.017784735 * trig.sin_q[4];
-    const double wrist_2_link_109 = (-0.017784735) * trig.cos_q[4];
+    const double wrist_2_link_108 = trig.sin_q[4] * 0.017784735;
+    const double wrist_2_link_109 = trig.cos_q[4] * (-0.017784735);
     const double wrist_2_link_110 = trig.cos_q[4] * wrist_3_link_91;
     const double wrist_2_link_111 = trig.sin_q[4] * wrist_3_link_91;
     const double wrist_2_link_112 = trig.sin_q[4] * wrist_2_link_110;
@@ -1450,10 +1450,10 @@ void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], con
     const double wrist_2_link_124 = wrist_2_link_122 + wrist_2_link_123;
     const double wrist_2_link_125 = trig.cos_q[4] * wrist_3_link_92;
     const double wrist_2_link_126 = trig.cos_q[4] * wrist_3_link_98;
-    const double wrist_2_link_127 = (-1.4069) * trig.sin_q[4];
+    const double wrist_2_link_127 = trig.sin_q[4] * (-1.4069);
     const double wrist_2_link_128 = trig.cos_q[4] * wrist_3_link_90;
     const double wrist_2_link_129 = trig.sin_q[4] * wrist_3_link_98;
-    const double wrist_2_link_130 = 1.4069 * trig.cos_q[4];
+    const double wrist_2_link_130 = trig.cos_q[4] * 1.4069;
     const double wrist_2_link_131 = trig.sin_q[4] * wrist_3_link_90;
     const double wrist_2_link_132 = trig.sin_q[4] * wrist_2_link_127;
     const double wrist_2_link_133 = trig.cos_q[4] * wrist_2_link_126;
@@ -2387,7 +2387,7 @@ void gravity_trig(const double q[nq], const JointTrig& trig, double g[nv]) noexc
     const double wrist_2_link_0 = wrist_1_link_6 * trig.cos_q[4];
     const double wrist_2_link_1 = wrist_1_link_6 * trig.sin_q[4];
     const double wrist_2_link_2 = 1.219 * wrist_2_link_0;
-    const double wrist_2_link_3 = (-1.219) * wrist_2_link_1;
+    const double wrist_2_link_3 = wrist_2_link_1 * (-1.219);
 
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; forward pass
     const double wrist_3_link_0 = wrist_1_link_9 * trig.sin_q[5];
@@ -2397,7 +2397,7 @@ void gravity_trig(const double q[nq], const JointTrig& trig, double g[nv]) noexc
     const double wrist_3_link_4 = wrist_2_link_0 * trig.sin_q[5];
     const double wrist_3_link_5 = wrist_3_link_3 + wrist_3_link_4;
     const double wrist_3_link_6 = 0.1879 * wrist_3_link_2;
-    const double wrist_3_link_7 = (-0.1879) * wrist_2_link_1;
+    const double wrist_3_link_7 = wrist_2_link_1 * (-0.1879);
     const double wrist_3_link_8 = 0.1879 * wrist_3_link_5;
 
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; backward pass
@@ -2530,15 +2530,15 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double upper_arm_link_14 = 9.81 * upper_arm_link_1;
     const double upper_arm_link_15 = upper_arm_link_11 + upper_arm_link_13;
     const double upper_arm_link_16 = upper_arm_link_14 - upper_arm_link_12;
-    const double upper_arm_link_17 = (-2.3500400000000004) * upper_arm_link_7;
-    const double upper_arm_link_18 = (-0.8849018759100001) * upper_arm_link_4;
+    const double upper_arm_link_17 = upper_arm_link_7 * (-2.3500400000000004);
+    const double upper_arm_link_18 = upper_arm_link_4 * (-0.8849018759100001);
     const double upper_arm_link_19 = 0.8849018759100001 * v[1];
     const double upper_arm_link_20 = 0.0151074 * upper_arm_link_5;
     const double upper_arm_link_21 = upper_arm_link_17 + upper_arm_link_19;
     const double upper_arm_link_22 = 2.3500400000000004 * v[1];
-    const double upper_arm_link_23 = (-2.3500400000000004) * upper_arm_link_4;
-    const double upper_arm_link_24 = (-8.393) * upper_arm_link_7;
-    const double upper_arm_link_25 = (-8.393) * upper_arm_link_8;
+    const double upper_arm_link_23 = upper_arm_link_4 * (-2.3500400000000004);
+    const double upper_arm_link_24 = upper_arm_link_7 * (-8.393);
+    const double upper_arm_link_25 = upper_arm_link_8 * (-8.393);
     const double upper_arm_link_26 = upper_arm_link_22 + upper_arm_link_24;
     const double upper_arm_link_27 = upper_arm_link_8 * upper_arm_link_23;
     const double upper_arm_link_28 = upper_arm_link_7 * upper_arm_link_25;
@@ -2564,8 +2564,8 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double upper_arm_link_48 = upper_arm_link_4 * upper_arm_link_23;
     const double upper_arm_link_49 = upper_arm_link_48 - upper_arm_link_47;
     const double upper_arm_link_50 = 2.3500400000000004 * upper_arm_link_15;
-    const double upper_arm_link_51 = (-0.8849018759100001) * upper_arm_link_9;
-    const double upper_arm_link_52 = (-0.0151074) * upper_arm_link_10;
+    const double upper_arm_link_51 = upper_arm_link_9 * (-0.8849018759100001);
+    const double upper_arm_link_52 = upper_arm_link_10 * (-0.0151074);
     const double upper_arm_link_53 = 8.393 * upper_arm_link_15;
     const double upper_arm_link_54 = 8.393 * upper_arm_link_16;
     const double upper_arm_link_55 = upper_arm_link_41 + upper_arm_link_51;
@@ -2584,8 +2584,8 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double forearm_link_6 = 0.425 * v[1];
     const double forearm_link_7 = (-0.1197) * upper_arm_link_5;
     const double forearm_link_8 = forearm_link_7 - forearm_link_6;
-    const double forearm_link_9 = (-0.425) * upper_arm_link_4;
-    const double forearm_link_10 = 0.1197 * upper_arm_link_4;
+    const double forearm_link_9 = upper_arm_link_4 * (-0.425);
+    const double forearm_link_10 = upper_arm_link_4 * 0.1197;
     const double forearm_link_11 = upper_arm_link_7 + forearm_link_8;
     const double forearm_link_12 = forearm_link_10 - upper_arm_link_8;
     const double forearm_link_13 = trig.sin_q[2] * forearm_link_12;
@@ -2605,9 +2605,9 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double forearm_link_27 = upper_arm_link_10 * trig.cos_q[2];
     const double forearm_link_28 = upper_arm_link_9 * trig.sin_q[2];
     const double forearm_link_29 = forearm_link_27 + forearm_link_28;
-    const double forearm_link_30 = 0.1197 * upper_arm_link_10;
-    const double forearm_link_31 = (-0.425) * upper_arm_link_9;
-    const double forearm_link_32 = 0.1197 * upper_arm_link_9;
+    const double forearm_link_30 = upper_arm_link_10 * 0.1197;
+    const double forearm_link_31 = upper_arm_link_9 * (-0.425);
+    const double forearm_link_32 = upper_arm_link_9 * 0.1197;
     const double forearm_link_33 = upper_arm_link_15 - forearm_link_30;
     const double forearm_link_34 = upper_arm_link_16 + forearm_link_32;
     const double forearm_link_35 = trig.sin_q[2] * forearm_link_34;
@@ -2620,17 +2620,17 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double forearm_link_42 = forearm_link_21 + forearm_link_29;
     const double forearm_link_43 = forearm_link_37 - forearm_link_22;
     const double forearm_link_44 = forearm_link_40 - forearm_link_23;
-    const double forearm_link_45 = (-0.56875) * forearm_link_9;
-    const double forearm_link_46 = (-0.56875) * forearm_link_15;
-    const double forearm_link_47 = (-0.19163081355599998) * forearm_link_2;
+    const double forearm_link_45 = forearm_link_9 * (-0.56875);
+    const double forearm_link_46 = forearm_link_15 * (-0.56875);
+    const double forearm_link_47 = forearm_link_2 * (-0.19163081355599998);
     const double forearm_link_48 = 0.19163081355599998 * forearm_link_19;
     const double forearm_link_49 = 0.004095 * forearm_link_5;
     const double forearm_link_50 = forearm_link_47 - forearm_link_45;
     const double forearm_link_51 = forearm_link_46 + forearm_link_48;
     const double forearm_link_52 = 0.56875 * forearm_link_19;
-    const double forearm_link_53 = (-0.56875) * forearm_link_2;
-    const double forearm_link_54 = (-2.275) * forearm_link_15;
-    const double forearm_link_55 = (-2.275) * forearm_link_9;
+    const double forearm_link_53 = forearm_link_2 * (-0.56875);
+    const double forearm_link_54 = forearm_link_15 * (-2.275);
+    const double forearm_link_55 = forearm_link_9 * (-2.275);
     const double forearm_link_56 = 2.275 * forearm_link_18;
     const double forearm_link_57 = forearm_link_52 + forearm_link_54;
     const double forearm_link_58 = forearm_link_55 - forearm_link_53;
@@ -2664,14 +2664,14 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double forearm_link_86 = forearm_link_19 * forearm_link_57;
     const double forearm_link_87 = forearm_link_2 * forearm_link_58;
     const double forearm_link_88 = forearm_link_86 + forearm_link_87;
-    const double forearm_link_89 = (-0.56875) * forearm_link_31;
+    const double forearm_link_89 = forearm_link_31 * (-0.56875);
     const double forearm_link_90 = 0.56875 * forearm_link_43;
     const double forearm_link_91 = 0.19163081355599998 * forearm_link_41;
-    const double forearm_link_92 = (-0.004095) * forearm_link_42;
+    const double forearm_link_92 = forearm_link_42 * (-0.004095);
     const double forearm_link_93 = forearm_link_91 - forearm_link_89;
     const double forearm_link_94 = 0.56875 * forearm_link_41;
     const double forearm_link_95 = 2.275 * forearm_link_43;
-    const double forearm_link_96 = (-2.275) * forearm_link_31;
+    const double forearm_link_96 = forearm_link_31 * (-2.275);
     const double forearm_link_97 = 2.275 * forearm_link_44;
     const double forearm_link_98 = forearm_link_96 - forearm_link_94;
     const double forearm_link_99 = forearm_link_77 + forearm_link_93;
@@ -2693,7 +2693,7 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double wrist_1_link_8 = forearm_link_2 * wrist_1_link_3;
     const double wrist_1_link_9 = wrist_1_link_7 - wrist_1_link_8;
     const double wrist_1_link_10 = 0.39225 * forearm_link_19;
-    const double wrist_1_link_11 = (-0.39225) * forearm_link_2;
+    const double wrist_1_link_11 = forearm_link_2 * (-0.39225);
     const double wrist_1_link_12 = wrist_1_link_10 - forearm_link_15;
     const double wrist_1_link_13 = forearm_link_9 + wrist_1_link_11;
     const double wrist_1_link_14 = forearm_link_18 * wrist_1_link_3;
@@ -2725,11 +2725,11 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double wrist_1_link_40 = wrist_1_link_30 - wrist_1_link_22;
     const double wrist_1_link_41 = wrist_1_link_35 - wrist_1_link_23;
     const double wrist_1_link_42 = wrist_1_link_24 + wrist_1_link_38;
-    const double wrist_1_link_43 = (-0.111172755531) * wrist_1_link_6;
+    const double wrist_1_link_43 = wrist_1_link_6 * (-0.111172755531);
     const double wrist_1_link_44 = 0.111172755531 * wrist_1_link_20;
     const double wrist_1_link_45 = 0.21942 * wrist_1_link_9;
     const double wrist_1_link_46 = 1.219 * wrist_1_link_16;
-    const double wrist_1_link_47 = (-1.219) * wrist_1_link_13;
+    const double wrist_1_link_47 = wrist_1_link_13 * (-1.219);
     const double wrist_1_link_48 = 1.219 * wrist_1_link_19;
     const double wrist_1_link_49 = wrist_1_link_19 * wrist_1_link_47;
     const double wrist_1_link_50 = wrist_1_link_13 * wrist_1_link_48;
@@ -2764,7 +2764,7 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double wrist_1_link_79 = 0.111172755531 * wrist_1_link_39;
     const double wrist_1_link_80 = 0.21942 * wrist_1_link_40;
     const double wrist_1_link_81 = 1.219 * wrist_1_link_41;
-    const double wrist_1_link_82 = (-1.219) * wrist_1_link_32;
+    const double wrist_1_link_82 = wrist_1_link_32 * (-1.219);
     const double wrist_1_link_83 = 1.219 * wrist_1_link_42;
     const double wrist_1_link_84 = wrist_1_link_67 + wrist_1_link_79;
     const double wrist_1_link_85 = wrist_1_link_69 + wrist_1_link_80;
@@ -2780,7 +2780,7 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double wrist_2_link_4 = wrist_1_link_6 * trig.sin_q[4];
     const double wrist_2_link_5 = wrist_2_link_3 + wrist_2_link_4;
     const double wrist_2_link_6 = 0.093 * wrist_1_link_9;
-    const double wrist_2_link_7 = (-0.093) * wrist_1_link_6;
+    const double wrist_2_link_7 = wrist_1_link_6 * (-0.093);
     const double wrist_2_link_8 = wrist_1_link_16 - wrist_2_link_6;
     const double wrist_2_link_9 = wrist_1_link_19 + wrist_2_link_7;
     const double wrist_2_link_10 = wrist_1_link_13 * trig.sin_q[4];
@@ -2886,7 +2886,7 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double wrist_3_link_24 = wrist_1_link_40 * trig.cos_q[5];
     const double wrist_3_link_25 = wrist_2_link_33 * trig.sin_q[5];
     const double wrist_3_link_26 = wrist_3_link_24 + wrist_3_link_25;
-    const double wrist_3_link_27 = (-0.09465) * wrist_2_link_34;
+    const double wrist_3_link_27 = wrist_2_link_34 * (-0.09465);
     const double wrist_3_link_28 = 0.09465 * wrist_2_link_33;
     const double wrist_3_link_29 = wrist_2_link_35 + wrist_3_link_27;
     const double wrist_3_link_30 = wrist_2_link_36 + wrist_3_link_28;
@@ -2904,7 +2904,7 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double wrist_3_link_42 = 0.0171364731454 * wrist_3_link_16;
     const double wrist_3_link_43 = 0.033822 * wrist_3_link_5;
     const double wrist_3_link_44 = 0.1879 * wrist_3_link_12;
-    const double wrist_3_link_45 = (-0.1879) * wrist_3_link_9;
+    const double wrist_3_link_45 = wrist_3_link_9 * (-0.1879);
     const double wrist_3_link_46 = 0.1879 * wrist_3_link_15;
     const double wrist_3_link_47 = wrist_3_link_15 * wrist_3_link_45;
     const double wrist_3_link_48 = wrist_3_link_9 * wrist_3_link_46;
@@ -2937,10 +2937,10 @@ void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], dou
     const double wrist_3_link_75 = wrist_3_link_2 * wrist_3_link_45;
     const double wrist_3_link_76 = wrist_3_link_75 - wrist_3_link_74;
     const double wrist_3_link_77 = 0.0171364731454 * wrist_3_link_37;
-    const double wrist_3_link_78 = (-0.0171364731454) * wrist_2_link_34;
+    const double wrist_3_link_78 = wrist_2_link_34 * (-0.0171364731454);
     const double wrist_3_link_79 = 0.033822 * wrist_3_link_38;
     const double wrist_3_link_80 = 0.1879 * wrist_3_link_39;
-    const double wrist_3_link_81 = (-0.1879) * wrist_3_link_30;
+    const double wrist_3_link_81 = wrist_3_link_30 * (-0.1879);
     const double wrist_3_link_82 = 0.1879 * wrist_3_link_40;
     const double wrist_3_link_83 = wrist_3_link_65 + wrist_3_link_77;
     const double wrist_3_link_84 = wrist_3_link_66 + wrist_3_link_78;
@@ -3096,7 +3096,7 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; articulated inertia pass
     const double wrist_3_link_0 = 0.0171364731454 * trig.cos_q[5];
     const double wrist_3_link_1 = 0.033822 * trig.sin_q[5];
-    const double wrist_3_link_2 = (-0.0171364731454) * trig.sin_q[5];
+    const double wrist_3_link_2 = trig.sin_q[5] * (-0.0171364731454);
     const double wrist_3_link_3 = 0.033822 * trig.cos_q[5];
     const double wrist_3_link_4 = trig.sin_q[5] * wrist_3_link_1;
     const double wrist_3_link_5 = trig.cos_q[5] * wrist_3_link_0;
@@ -3109,7 +3109,7 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     const double wrist_3_link_12 = wrist_3_link_10 + wrist_3_link_11;
     const double wrist_3_link_13 = 0.1879 * trig.cos_q[5];
     const double wrist_3_link_14 = 0.1879 * trig.sin_q[5];
-    const double wrist_3_link_15 = (-0.1879) * trig.sin_q[5];
+    const double wrist_3_link_15 = trig.sin_q[5] * (-0.1879);
     const double wrist_3_link_16 = trig.sin_q[5] * wrist_3_link_14;
     const double wrist_3_link_17 = trig.cos_q[5] * wrist_3_link_13;
     const double wrist_3_link_18 = wrist_3_link_16 + wrist_3_link_17;
@@ -3120,7 +3120,7 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     const double wrist_3_link_23 = wrist_3_link_21 + wrist_3_link_22;
     const double wrist_3_link_24 = 0.09465 * wrist_3_link_18;
     const double wrist_3_link_25 = 0.09465 * wrist_3_link_23;
-    const double wrist_3_link_26 = (-0.09465) * wrist_3_link_24;
+    const double wrist_3_link_26 = wrist_3_link_24 * (-0.09465);
     const double wrist_3_link_27 = wrist_3_link_6 - (-0.00168332516775);
     const double wrist_3_link_28 = 0.111172755531 + wrist_3_link_27;
     const double wrist_3_link_29 = 0.111172755531 - wrist_3_link_26;
@@ -3155,8 +3155,8 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     const double wrist_2_link_23 = trig.sin_q[4] * wrist_2_link_15;
     const double wrist_2_link_24 = trig.cos_q[4] * wrist_2_link_14;
     const double wrist_2_link_25 = wrist_2_link_24 - wrist_2_link_23;
-    const double wrist_2_link_26 = 0.017784735 * trig.sin_q[4];
-    const double wrist_2_link_27 = (-0.017784735) * trig.cos_q[4];
+    const double wrist_2_link_26 = trig.sin_q[4] * 0.017784735;
+    const double wrist_2_link_27 = trig.cos_q[4] * (-0.017784735);
     const double wrist_2_link_28 = trig.cos_q[4] * wrist_3_link_24;
     const double wrist_2_link_29 = trig.sin_q[4] * wrist_3_link_24;
     const double wrist_2_link_30 = trig.sin_q[4] * wrist_2_link_28;
@@ -3174,10 +3174,10 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     const double wrist_2_link_42 = wrist_2_link_40 + wrist_2_link_41;
     const double wrist_2_link_43 = trig.cos_q[4] * wrist_3_link_25;
     const double wrist_2_link_44 = trig.cos_q[4] * wrist_3_link_31;
-    const double wrist_2_link_45 = (-1.4069) * trig.sin_q[4];
+    const double wrist_2_link_45 = trig.sin_q[4] * (-1.4069);
     const double wrist_2_link_46 = trig.cos_q[4] * wrist_3_link_23;
     const double wrist_2_link_47 = trig.sin_q[4] * wrist_3_link_31;
-    const double wrist_2_link_48 = 1.4069 * trig.cos_q[4];
+    const double wrist_2_link_48 = trig.cos_q[4] * 1.4069;
     const double wrist_2_link_49 = trig.sin_q[4] * wrist_3_link_23;
     const double wrist_2_link_50 = trig.sin_q[4] * wrist_2_link_45;
     const double wrist_2_link_51 = trig.cos_q[4] * wrist_2_link_44;
@@ -3188,7 +3188,7 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     const double wrist_2_link_56 = trig.sin_q[4] * wrist_2_link_48;
     const double wrist_2_link_57 = trig.cos_q[4] * wrist_2_link_47;
     const double wrist_2_link_58 = wrist_2_link_57 - wrist_2_link_56;
-    const double wrist_2_link_59 = (-0.093) * wrist_2_link_36;
+    const double wrist_2_link_59 = wrist_2_link_36 * (-0.093);
     const double wrist_2_link_60 = 0.093 * wrist_2_link_32;
     const double wrist_2_link_61 = 0.093 * wrist_2_link_43;
     const double wrist_2_link_62 = 0.093 * wrist_2_link_39;
@@ -3257,8 +3257,8 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     const double wrist_1_link_39 = wrist_1_link_1 * wrist_1_link_32;
     const double wrist_1_link_40 = wrist_1_link_3 * wrist_1_link_30;
     const double wrist_1_link_41 = wrist_1_link_40 - wrist_1_link_39;
-    const double wrist_1_link_42 = (-0.39225) * wrist_1_link_31;
-    const double wrist_1_link_43 = (-0.39225) * wrist_1_link_38;
+    const double wrist_1_link_42 = wrist_1_link_31 * (-0.39225);
+    const double wrist_1_link_43 = wrist_1_link_38 * (-0.39225);
     const double wrist_1_link_44 = wrist_1_link_3 * wrist_1_link_35;
     const double wrist_1_link_45 = wrist_1_link_1 * wrist_1_link_33;
     const double wrist_1_link_46 = wrist_1_link_44 + wrist_1_link_45;
@@ -3537,7 +3537,7 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     const double forearm_link_74 = trig.cos_q[2] * forearm_link_70;
     const double forearm_link_75 = trig.sin_q[2] * forearm_link_68;
     const double forearm_link_76 = forearm_link_74 + forearm_link_75;
-    const double forearm_link_77 = (-0.425) * forearm_link_69;
+    const double forearm_link_77 = forearm_link_69 * (-0.425);
     const double forearm_link_78 = (-0.1197) * forearm_link_76;
     const double forearm_link_79 = forearm_link_78 - forearm_link_77;
     const double forearm_link_80 = 0.425 * forearm_link_73;
@@ -3743,7 +3743,7 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     const double forearm_link_280 = (-0.1197) * forearm_link_277;
     const double forearm_link_281 = forearm_link_280 - forearm_link_279;
     const double forearm_link_282 = (-0.425) * forearm_link_267;
-    const double forearm_link_283 = 0.1197 * forearm_link_278;
+    const double forearm_link_283 = forearm_link_278 * 0.1197;
     const double forearm_link_284 = forearm_link_283 - forearm_link_282;
     const double forearm_link_285 = (-0.425) * forearm_link_269;
     const double forearm_link_286 = 0.425 * forearm_link_274;
@@ -4325,10 +4325,10 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double upper_arm_link_5 = trig.sin_q[0] * upper_arm_link_1;
     const double upper_arm_link_6 = trig.cos_q[0] * upper_arm_link_3;
     const double upper_arm_link_7 = trig.sin_q[0] * upper_arm_link_3;
-    const double upper_arm_link_8 = (-0.13585) * trig.sin_q[0];
+    const double upper_arm_link_8 = trig.sin_q[0] * (-0.13585);
     const double upper_arm_link_9 = 0.13585 * trig.cos_q[0];
     const double upper_arm_link_10 = 0.089159 * trig.cos_q[0];
-    const double upper_arm_link_11 = (-0.089159) * trig.sin_q[0];
+    const double upper_arm_link_11 = trig.sin_q[0] * (-0.089159);
     const double upper_arm_link_12 = trig.sin_q[0] * upper_arm_link_9;
     const double upper_arm_link_13 = trig.cos_q[0] * upper_arm_link_8;
     const double upper_arm_link_14 = upper_arm_link_12 + upper_arm_link_13;
@@ -4397,14 +4397,14 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double upper_arm_link_77 = 8.393 * upper_arm_link_9;
     const double upper_arm_link_78 = upper_arm_link_73 + upper_arm_link_76;
     const double upper_arm_link_79 = upper_arm_link_74 + upper_arm_link_77;
-    const double upper_arm_link_80 = 0.748311487 + upper_arm_link_75;
+    const double upper_arm_link_80 = upper_arm_link_75 + 0.748311487;
     const double upper_arm_link_81 = 0.8849018759100001 * upper_arm_link_4;
-    const double upper_arm_link_82 = (-0.8849018759100001) * trig.sin_q[0];
+    const double upper_arm_link_82 = trig.sin_q[0] * (-0.8849018759100001);
     const double upper_arm_link_83 = 0.0151074 * upper_arm_link_6;
     const double upper_arm_link_84 = 0.8849018759100001 * upper_arm_link_5;
     const double upper_arm_link_85 = 0.8849018759100001 * trig.cos_q[0];
     const double upper_arm_link_86 = 0.0151074 * upper_arm_link_7;
-    const double upper_arm_link_87 = (-0.8849018759100001) * upper_arm_link_3;
+    const double upper_arm_link_87 = upper_arm_link_3 * (-0.8849018759100001);
     const double upper_arm_link_88 = 0.0151074 * upper_arm_link_1;
     const double upper_arm_link_89 = upper_arm_link_6 * upper_arm_link_83;
     const double upper_arm_link_90 = trig.sin_q[0] * upper_arm_link_82;
@@ -4509,7 +4509,7 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double upper_arm_link_189 = upper_arm_link_166 + upper_arm_link_188;
     const double upper_arm_link_190 = upper_arm_link_145 + upper_arm_link_173;
     const double upper_arm_link_191 = upper_arm_link_149 - upper_arm_link_190;
-    const double upper_arm_link_192 = (-8.393) * upper_arm_link_17;
+    const double upper_arm_link_192 = upper_arm_link_17 * (-8.393);
     const double upper_arm_link_193 = 8.393 * upper_arm_link_18;
     const double upper_arm_link_194 = 8.393 * upper_arm_link_19;
     const double upper_arm_link_195 = v[0] * upper_arm_link_79;
@@ -4620,7 +4620,7 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double forearm_link_16 = upper_arm_link_3 * trig.sin_q[2];
     const double forearm_link_17 = forearm_link_15 - forearm_link_16;
     const double forearm_link_18 = 0.425 * upper_arm_link_6;
-    const double forearm_link_19 = 0.1197 * trig.sin_q[0];
+    const double forearm_link_19 = trig.sin_q[0] * 0.1197;
     const double forearm_link_20 = forearm_link_18 + forearm_link_19;
     const double forearm_link_21 = 0.425 * upper_arm_link_7;
     const double forearm_link_22 = (-0.1197) * trig.cos_q[0];
@@ -4772,12 +4772,12 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double forearm_link_168 = forearm_link_162 + forearm_link_165;
     const double forearm_link_169 = forearm_link_163 + forearm_link_166;
     const double forearm_link_170 = 0.19163081355599998 * forearm_link_2;
-    const double forearm_link_171 = (-0.19163081355599998) * trig.sin_q[0];
+    const double forearm_link_171 = trig.sin_q[0] * (-0.19163081355599998);
     const double forearm_link_172 = 0.004095 * forearm_link_11;
     const double forearm_link_173 = 0.19163081355599998 * forearm_link_5;
     const double forearm_link_174 = 0.19163081355599998 * trig.cos_q[0];
     const double forearm_link_175 = 0.004095 * forearm_link_14;
-    const double forearm_link_176 = (-0.19163081355599998) * forearm_link_8;
+    const double forearm_link_176 = forearm_link_8 * (-0.19163081355599998);
     const double forearm_link_177 = 0.004095 * forearm_link_17;
     const double forearm_link_178 = forearm_link_11 * forearm_link_172;
     const double forearm_link_179 = trig.sin_q[0] * forearm_link_171;
@@ -4882,7 +4882,7 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double forearm_link_278 = forearm_link_255 + forearm_link_277;
     const double forearm_link_279 = forearm_link_234 + forearm_link_262;
     const double forearm_link_280 = forearm_link_238 - forearm_link_279;
-    const double forearm_link_281 = (-2.275) * forearm_link_45;
+    const double forearm_link_281 = forearm_link_45 * (-2.275);
     const double forearm_link_282 = 2.275 * forearm_link_46;
     const double forearm_link_283 = 2.275 * forearm_link_47;
     const double forearm_link_284 = v[0] * forearm_link_168;
@@ -5165,12 +5165,12 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_1_link_162 = 1.219 * wrist_1_link_26;
     const double wrist_1_link_163 = 1.219 * wrist_1_link_27;
     const double wrist_1_link_164 = 0.111172755531 * wrist_1_link_6;
-    const double wrist_1_link_165 = (-0.111172755531) * trig.sin_q[0];
+    const double wrist_1_link_165 = trig.sin_q[0] * (-0.111172755531);
     const double wrist_1_link_166 = 0.21942 * wrist_1_link_15;
     const double wrist_1_link_167 = 0.111172755531 * wrist_1_link_9;
     const double wrist_1_link_168 = 0.111172755531 * trig.cos_q[0];
     const double wrist_1_link_169 = 0.21942 * wrist_1_link_18;
-    const double wrist_1_link_170 = (-0.111172755531) * wrist_1_link_12;
+    const double wrist_1_link_170 = wrist_1_link_12 * (-0.111172755531);
     const double wrist_1_link_171 = 0.21942 * wrist_1_link_21;
     const double wrist_1_link_172 = wrist_1_link_15 * wrist_1_link_166;
     const double wrist_1_link_173 = trig.sin_q[0] * wrist_1_link_165;
@@ -5260,7 +5260,7 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_1_link_257 = wrist_1_link_234 + wrist_1_link_256;
     const double wrist_1_link_258 = wrist_1_link_213 + wrist_1_link_241;
     const double wrist_1_link_259 = wrist_1_link_217 - wrist_1_link_258;
-    const double wrist_1_link_260 = (-1.219) * wrist_1_link_45;
+    const double wrist_1_link_260 = wrist_1_link_45 * (-1.219);
     const double wrist_1_link_261 = 1.219 * wrist_1_link_46;
     const double wrist_1_link_262 = 1.219 * wrist_1_link_47;
     const double wrist_1_link_263 = v[0] * wrist_1_link_162;
@@ -5392,7 +5392,7 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_2_link_11 = wrist_1_link_9 * trig.sin_q[4];
     const double wrist_2_link_12 = wrist_2_link_10 - wrist_2_link_11;
     const double wrist_2_link_13 = wrist_1_link_12 * trig.sin_q[4];
-    const double wrist_2_link_14 = (-0.093) * trig.sin_q[0];
+    const double wrist_2_link_14 = trig.sin_q[0] * (-0.093);
     const double wrist_2_link_15 = 0.093 * trig.cos_q[0];
     const double wrist_2_link_16 = wrist_1_link_25 + wrist_2_link_14;
     const double wrist_2_link_17 = wrist_1_link_26 + wrist_2_link_15;
@@ -5983,12 +5983,12 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_3_link_196 = 0.1879 * wrist_3_link_22;
     const double wrist_3_link_197 = 0.1879 * wrist_3_link_23;
     const double wrist_3_link_198 = 0.0171364731454 * wrist_3_link_2;
-    const double wrist_3_link_199 = (-0.0171364731454) * wrist_2_link_9;
+    const double wrist_3_link_199 = wrist_2_link_9 * (-0.0171364731454);
     const double wrist_3_link_200 = 0.033822 * wrist_3_link_11;
     const double wrist_3_link_201 = 0.0171364731454 * wrist_3_link_5;
     const double wrist_3_link_202 = 0.0171364731454 * wrist_2_link_12;
     const double wrist_3_link_203 = 0.033822 * wrist_3_link_14;
-    const double wrist_3_link_204 = (-0.0171364731454) * wrist_3_link_8;
+    const double wrist_3_link_204 = wrist_3_link_8 * (-0.0171364731454);
     const double wrist_3_link_205 = 0.0171364731454 * wrist_2_link_13;
     const double wrist_3_link_206 = 0.033822 * wrist_3_link_17;
     const double wrist_3_link_207 = wrist_3_link_11 * wrist_3_link_200;
@@ -6244,7 +6244,7 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_3_link_455 = wrist_2_link_12 * wrist_3_link_195;
     const double wrist_3_link_456 = wrist_3_link_454 + wrist_3_link_455;
     const double wrist_3_link_457 = 0.1879 * wrist_3_link_26;
-    const double wrist_3_link_458 = (-0.1879) * wrist_3_link_29;
+    const double wrist_3_link_458 = wrist_3_link_29 * (-0.1879);
     const double wrist_3_link_459 = 0.1879 * wrist_3_link_32;
     const double wrist_3_link_460 = wrist_3_link_457 - wrist_3_link_450;
     const double wrist_3_link_461 = wrist_3_link_453 + wrist_3_link_458;
@@ -6599,9 +6599,9 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_2_link_437 = wrist_1_link_15 * wrist_3_link_746;
     const double wrist_2_link_438 = wrist_1_link_18 * wrist_3_link_745;
     const double wrist_2_link_439 = wrist_2_link_438 - wrist_2_link_437;
-    const double wrist_2_link_440 = 1.4069 * wrist_2_link_20;
-    const double wrist_2_link_441 = 1.4069 * wrist_2_link_23;
-    const double wrist_2_link_442 = 1.4069 * wrist_2_link_26;
+    const double wrist_2_link_440 = wrist_2_link_20 * 1.4069;
+    const double wrist_2_link_441 = wrist_2_link_23 * 1.4069;
+    const double wrist_2_link_442 = wrist_2_link_26 * 1.4069;
     const double wrist_2_link_443 = wrist_2_link_440 - wrist_2_link_433;
     const double wrist_2_link_444 = wrist_2_link_441 - wrist_2_link_436;
     const double wrist_2_link_445 = wrist_2_link_442 - wrist_2_link_439;
@@ -6815,9 +6815,9 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_2_link_653 = wrist_2_link_177 * wrist_3_link_746;
     const double wrist_2_link_654 = wrist_2_link_178 * wrist_3_link_745;
     const double wrist_2_link_655 = wrist_2_link_654 - wrist_2_link_653;
-    const double wrist_2_link_656 = 1.4069 * wrist_2_link_180;
-    const double wrist_2_link_657 = 1.4069 * wrist_2_link_181;
-    const double wrist_2_link_658 = 1.4069 * wrist_2_link_182;
+    const double wrist_2_link_656 = wrist_2_link_180 * 1.4069;
+    const double wrist_2_link_657 = wrist_2_link_181 * 1.4069;
+    const double wrist_2_link_658 = wrist_2_link_182 * 1.4069;
     const double wrist_2_link_659 = wrist_2_link_649 + wrist_2_link_656;
     const double wrist_2_link_660 = wrist_2_link_657 - wrist_2_link_652;
     const double wrist_2_link_661 = wrist_2_link_658 - wrist_2_link_655;
@@ -6875,9 +6875,9 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_2_link_713 = wrist_2_link_183 * wrist_3_link_746;
     const double wrist_2_link_714 = wrist_2_link_184 * wrist_3_link_745;
     const double wrist_2_link_715 = wrist_2_link_714 - wrist_2_link_713;
-    const double wrist_2_link_716 = 1.4069 * wrist_2_link_186;
-    const double wrist_2_link_717 = 1.4069 * wrist_2_link_187;
-    const double wrist_2_link_718 = (-1.4069) * wrist_2_link_188;
+    const double wrist_2_link_716 = wrist_2_link_186 * 1.4069;
+    const double wrist_2_link_717 = wrist_2_link_187 * 1.4069;
+    const double wrist_2_link_718 = wrist_2_link_188 * (-1.4069);
     const double wrist_2_link_719 = wrist_2_link_709 + wrist_2_link_716;
     const double wrist_2_link_720 = wrist_2_link_717 - wrist_2_link_712;
     const double wrist_2_link_721 = wrist_2_link_718 - wrist_2_link_715;
@@ -6945,9 +6945,9 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_1_link_399 = trig.sin_q[0] * wrist_2_link_729;
     const double wrist_1_link_400 = trig.cos_q[0] * wrist_2_link_728;
     const double wrist_1_link_401 = wrist_1_link_399 + wrist_1_link_400;
-    const double wrist_1_link_402 = (-2.6259) * wrist_1_link_28;
-    const double wrist_1_link_403 = (-2.6259) * wrist_1_link_29;
-    const double wrist_1_link_404 = 2.6259 * wrist_1_link_32;
+    const double wrist_1_link_402 = wrist_1_link_28 * (-2.6259);
+    const double wrist_1_link_403 = wrist_1_link_29 * (-2.6259);
+    const double wrist_1_link_404 = wrist_1_link_32 * 2.6259;
     const double wrist_1_link_405 = wrist_1_link_397 + wrist_1_link_402;
     const double wrist_1_link_406 = wrist_1_link_398 + wrist_1_link_403;
     const double wrist_1_link_407 = wrist_1_link_404 - wrist_1_link_401;
@@ -7135,9 +7135,9 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_1_link_589 = wrist_1_link_151 * wrist_2_link_729;
     const double wrist_1_link_590 = wrist_1_link_152 * wrist_2_link_728;
     const double wrist_1_link_591 = wrist_1_link_590 - wrist_1_link_589;
-    const double wrist_1_link_592 = 2.6259 * wrist_1_link_154;
-    const double wrist_1_link_593 = 2.6259 * wrist_1_link_155;
-    const double wrist_1_link_594 = 2.6259 * wrist_1_link_156;
+    const double wrist_1_link_592 = wrist_1_link_154 * 2.6259;
+    const double wrist_1_link_593 = wrist_1_link_155 * 2.6259;
+    const double wrist_1_link_594 = wrist_1_link_156 * 2.6259;
     const double wrist_1_link_595 = wrist_1_link_592 - wrist_1_link_585;
     const double wrist_1_link_596 = wrist_1_link_593 - wrist_1_link_588;
     const double wrist_1_link_597 = wrist_1_link_594 - wrist_1_link_591;
@@ -7195,9 +7195,9 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double wrist_1_link_649 = upper_arm_link_69 * wrist_2_link_729;
     const double wrist_1_link_650 = upper_arm_link_70 * wrist_2_link_728;
     const double wrist_1_link_651 = wrist_1_link_649 - wrist_1_link_650;
-    const double wrist_1_link_652 = 2.6259 * wrist_1_link_158;
-    const double wrist_1_link_653 = 2.6259 * wrist_1_link_159;
-    const double wrist_1_link_654 = 2.6259 * wrist_1_link_160;
+    const double wrist_1_link_652 = wrist_1_link_158 * 2.6259;
+    const double wrist_1_link_653 = wrist_1_link_159 * 2.6259;
+    const double wrist_1_link_654 = wrist_1_link_160 * 2.6259;
     const double wrist_1_link_655 = wrist_1_link_652 - wrist_1_link_645;
     const double wrist_1_link_656 = wrist_1_link_648 + wrist_1_link_653;
     const double wrist_1_link_657 = wrist_1_link_654 - wrist_1_link_651;
@@ -7265,9 +7265,9 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double forearm_link_420 = trig.sin_q[0] * wrist_1_link_665;
     const double forearm_link_421 = trig.cos_q[0] * wrist_1_link_664;
     const double forearm_link_422 = forearm_link_420 + forearm_link_421;
-    const double forearm_link_423 = (-4.9009) * forearm_link_28;
-    const double forearm_link_424 = (-4.9009) * forearm_link_29;
-    const double forearm_link_425 = 4.9009 * forearm_link_32;
+    const double forearm_link_423 = forearm_link_28 * (-4.9009);
+    const double forearm_link_424 = forearm_link_29 * (-4.9009);
+    const double forearm_link_425 = forearm_link_32 * 4.9009;
     const double forearm_link_426 = forearm_link_418 + forearm_link_423;
     const double forearm_link_427 = forearm_link_419 + forearm_link_424;
     const double forearm_link_428 = forearm_link_425 - forearm_link_422;
@@ -7455,9 +7455,9 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double forearm_link_610 = forearm_link_151 * wrist_1_link_665;
     const double forearm_link_611 = forearm_link_152 * wrist_1_link_664;
     const double forearm_link_612 = forearm_link_611 - forearm_link_610;
-    const double forearm_link_613 = 4.9009 * forearm_link_154;
-    const double forearm_link_614 = 4.9009 * forearm_link_155;
-    const double forearm_link_615 = 4.9009 * forearm_link_156;
+    const double forearm_link_613 = forearm_link_154 * 4.9009;
+    const double forearm_link_614 = forearm_link_155 * 4.9009;
+    const double forearm_link_615 = forearm_link_156 * 4.9009;
     const double forearm_link_616 = forearm_link_613 - forearm_link_606;
     const double forearm_link_617 = forearm_link_614 - forearm_link_609;
     const double forearm_link_618 = forearm_link_615 - forearm_link_612;
@@ -7515,9 +7515,9 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double forearm_link_670 = upper_arm_link_69 * wrist_1_link_665;
     const double forearm_link_671 = upper_arm_link_70 * wrist_1_link_664;
     const double forearm_link_672 = forearm_link_670 - forearm_link_671;
-    const double forearm_link_673 = 4.9009 * forearm_link_158;
-    const double forearm_link_674 = 4.9009 * forearm_link_159;
-    const double forearm_link_675 = 4.9009 * forearm_link_160;
+    const double forearm_link_673 = forearm_link_158 * 4.9009;
+    const double forearm_link_674 = forearm_link_159 * 4.9009;
+    const double forearm_link_675 = forearm_link_160 * 4.9009;
     const double forearm_link_676 = forearm_link_673 - forearm_link_666;
     const double forearm_link_677 = forearm_link_669 + forearm_link_674;
     const double forearm_link_678 = forearm_link_675 - forearm_link_672;
@@ -7572,8 +7572,8 @@ void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const doub
     const double upper_arm_link_295 = upper_arm_link_293 - upper_arm_link_287;
     const double upper_arm_link_296 = trig.cos_q[0] * forearm_link_687;
     const double upper_arm_link_297 = trig.sin_q[0] * forearm_link_687;
-    const double upper_arm_link_298 = (-13.2939) * upper_arm_link_10;
-    const double upper_arm_link_299 = 13.2939 * upper_arm_link_11;
+    const double upper_arm_link_298 = upper_arm_link_10 * (-13.2939);
+    const double upper_arm_link_299 = upper_arm_link_11 * 13.2939;
     const double upper_arm_link_300 = upper_arm_link_296 + upper_arm_link_298;
     const double upper_arm_link_301 = upper_arm_link_297 + upper_arm_link_299;
     const double upper_arm_link_302 = upper_arm_link_14 * forearm_link_706;
@@ -8475,15 +8475,15 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double upper_arm_link_10 = v[1] * upper_arm_link_4;
     const double upper_arm_link_11 = v[1] * upper_arm_link_8;
     const double upper_arm_link_12 = v[1] * upper_arm_link_7;
-    const double upper_arm_link_13 = (-2.3500400000000004) * upper_arm_link_7;
-    const double upper_arm_link_14 = (-0.8849018759100001) * upper_arm_link_4;
+    const double upper_arm_link_13 = upper_arm_link_7 * (-2.3500400000000004);
+    const double upper_arm_link_14 = upper_arm_link_4 * (-0.8849018759100001);
     const double upper_arm_link_15 = 0.8849018759100001 * v[1];
     const double upper_arm_link_16 = 0.0151074 * upper_arm_link_5;
     const double upper_arm_link_17 = upper_arm_link_13 + upper_arm_link_15;
     const double upper_arm_link_18 = 2.3500400000000004 * v[1];
-    const double upper_arm_link_19 = (-2.3500400000000004) * upper_arm_link_4;
-    const double upper_arm_link_20 = (-8.393) * upper_arm_link_7;
-    const double upper_arm_link_21 = (-8.393) * upper_arm_link_8;
+    const double upper_arm_link_19 = upper_arm_link_4 * (-2.3500400000000004);
+    const double upper_arm_link_20 = upper_arm_link_7 * (-8.393);
+    const double upper_arm_link_21 = upper_arm_link_8 * (-8.393);
     const double upper_arm_link_22 = upper_arm_link_18 + upper_arm_link_20;
     const double upper_arm_link_23 = upper_arm_link_8 * upper_arm_link_19;
     const double upper_arm_link_24 = upper_arm_link_7 * upper_arm_link_21;
@@ -8519,8 +8519,8 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double forearm_link_6 = 0.425 * v[1];
     const double forearm_link_7 = (-0.1197) * upper_arm_link_5;
     const double forearm_link_8 = forearm_link_7 - forearm_link_6;
-    const double forearm_link_9 = (-0.425) * upper_arm_link_4;
-    const double forearm_link_10 = 0.1197 * upper_arm_link_4;
+    const double forearm_link_9 = upper_arm_link_4 * (-0.425);
+    const double forearm_link_10 = upper_arm_link_4 * 0.1197;
     const double forearm_link_11 = upper_arm_link_7 + forearm_link_8;
     const double forearm_link_12 = forearm_link_10 - upper_arm_link_8;
     const double forearm_link_13 = trig.sin_q[2] * forearm_link_12;
@@ -8534,17 +8534,17 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double forearm_link_21 = v[2] * forearm_link_2;
     const double forearm_link_22 = v[2] * forearm_link_18;
     const double forearm_link_23 = v[2] * forearm_link_15;
-    const double forearm_link_24 = (-0.56875) * forearm_link_9;
-    const double forearm_link_25 = (-0.56875) * forearm_link_15;
-    const double forearm_link_26 = (-0.19163081355599998) * forearm_link_2;
+    const double forearm_link_24 = forearm_link_9 * (-0.56875);
+    const double forearm_link_25 = forearm_link_15 * (-0.56875);
+    const double forearm_link_26 = forearm_link_2 * (-0.19163081355599998);
     const double forearm_link_27 = 0.19163081355599998 * forearm_link_19;
     const double forearm_link_28 = 0.004095 * forearm_link_5;
     const double forearm_link_29 = forearm_link_26 - forearm_link_24;
     const double forearm_link_30 = forearm_link_25 + forearm_link_27;
     const double forearm_link_31 = 0.56875 * forearm_link_19;
-    const double forearm_link_32 = (-0.56875) * forearm_link_2;
-    const double forearm_link_33 = (-2.275) * forearm_link_15;
-    const double forearm_link_34 = (-2.275) * forearm_link_9;
+    const double forearm_link_32 = forearm_link_2 * (-0.56875);
+    const double forearm_link_33 = forearm_link_15 * (-2.275);
+    const double forearm_link_34 = forearm_link_9 * (-2.275);
     const double forearm_link_35 = 2.275 * forearm_link_18;
     const double forearm_link_36 = forearm_link_31 + forearm_link_33;
     const double forearm_link_37 = forearm_link_34 - forearm_link_32;
@@ -8591,7 +8591,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_1_link_8 = forearm_link_2 * wrist_1_link_3;
     const double wrist_1_link_9 = wrist_1_link_7 - wrist_1_link_8;
     const double wrist_1_link_10 = 0.39225 * forearm_link_19;
-    const double wrist_1_link_11 = (-0.39225) * forearm_link_2;
+    const double wrist_1_link_11 = forearm_link_2 * (-0.39225);
     const double wrist_1_link_12 = wrist_1_link_10 - forearm_link_15;
     const double wrist_1_link_13 = forearm_link_9 + wrist_1_link_11;
     const double wrist_1_link_14 = forearm_link_18 * wrist_1_link_3;
@@ -8605,11 +8605,11 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_1_link_22 = v[3] * wrist_1_link_6;
     const double wrist_1_link_23 = v[3] * wrist_1_link_19;
     const double wrist_1_link_24 = v[3] * wrist_1_link_16;
-    const double wrist_1_link_25 = (-0.111172755531) * wrist_1_link_6;
+    const double wrist_1_link_25 = wrist_1_link_6 * (-0.111172755531);
     const double wrist_1_link_26 = 0.111172755531 * wrist_1_link_20;
     const double wrist_1_link_27 = 0.21942 * wrist_1_link_9;
     const double wrist_1_link_28 = 1.219 * wrist_1_link_16;
-    const double wrist_1_link_29 = (-1.219) * wrist_1_link_13;
+    const double wrist_1_link_29 = wrist_1_link_13 * (-1.219);
     const double wrist_1_link_30 = 1.219 * wrist_1_link_19;
     const double wrist_1_link_31 = wrist_1_link_19 * wrist_1_link_29;
     const double wrist_1_link_32 = wrist_1_link_13 * wrist_1_link_30;
@@ -8650,7 +8650,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_2_link_4 = wrist_1_link_6 * trig.sin_q[4];
     const double wrist_2_link_5 = wrist_2_link_3 + wrist_2_link_4;
     const double wrist_2_link_6 = 0.093 * wrist_1_link_9;
-    const double wrist_2_link_7 = (-0.093) * wrist_1_link_6;
+    const double wrist_2_link_7 = wrist_1_link_6 * (-0.093);
     const double wrist_2_link_8 = wrist_1_link_16 - wrist_2_link_6;
     const double wrist_2_link_9 = wrist_1_link_19 + wrist_2_link_7;
     const double wrist_2_link_10 = wrist_1_link_13 * trig.sin_q[4];
@@ -8727,7 +8727,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_3_link_22 = 0.0171364731454 * wrist_3_link_16;
     const double wrist_3_link_23 = 0.033822 * wrist_3_link_5;
     const double wrist_3_link_24 = 0.1879 * wrist_3_link_12;
-    const double wrist_3_link_25 = (-0.1879) * wrist_3_link_9;
+    const double wrist_3_link_25 = wrist_3_link_9 * (-0.1879);
     const double wrist_3_link_26 = 0.1879 * wrist_3_link_15;
     const double wrist_3_link_27 = wrist_3_link_15 * wrist_3_link_25;
     const double wrist_3_link_28 = wrist_3_link_9 * wrist_3_link_26;
@@ -8762,9 +8762,9 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
 
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; articulated inertia pass
     const double wrist_3_link_57 = tau[5] - wrist_3_link_46;
-    const double wrist_3_link_58 = (-0.0171364731454) * wrist_3_link_17;
+    const double wrist_3_link_58 = wrist_3_link_17 * (-0.0171364731454);
     const double wrist_3_link_59 = 0.033822 * wrist_3_link_18;
-    const double wrist_3_link_60 = (-0.1879) * wrist_3_link_19;
+    const double wrist_3_link_60 = wrist_3_link_19 * (-0.1879);
     const double wrist_3_link_61 = 0.1879 * wrist_3_link_20;
     const double wrist_3_link_62 = wrist_3_link_45 + wrist_3_link_58;
     const double wrist_3_link_63 = wrist_3_link_47 + wrist_3_link_59;
@@ -8773,7 +8773,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_3_link_66 = wrist_3_link_46 + wrist_3_link_57;
     const double wrist_3_link_67 = 0.0171364731454 * trig.cos_q[5];
     const double wrist_3_link_68 = 0.033822 * trig.sin_q[5];
-    const double wrist_3_link_69 = (-0.0171364731454) * trig.sin_q[5];
+    const double wrist_3_link_69 = trig.sin_q[5] * (-0.0171364731454);
     const double wrist_3_link_70 = 0.033822 * trig.cos_q[5];
     const double wrist_3_link_71 = trig.sin_q[5] * wrist_3_link_68;
     const double wrist_3_link_72 = trig.cos_q[5] * wrist_3_link_67;
@@ -8786,7 +8786,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_3_link_79 = wrist_3_link_77 + wrist_3_link_78;
     const double wrist_3_link_80 = 0.1879 * trig.cos_q[5];
     const double wrist_3_link_81 = 0.1879 * trig.sin_q[5];
-    const double wrist_3_link_82 = (-0.1879) * trig.sin_q[5];
+    const double wrist_3_link_82 = trig.sin_q[5] * (-0.1879);
     const double wrist_3_link_83 = trig.sin_q[5] * wrist_3_link_81;
     const double wrist_3_link_84 = trig.cos_q[5] * wrist_3_link_80;
     const double wrist_3_link_85 = wrist_3_link_83 + wrist_3_link_84;
@@ -8797,7 +8797,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_3_link_90 = wrist_3_link_88 + wrist_3_link_89;
     const double wrist_3_link_91 = 0.09465 * wrist_3_link_85;
     const double wrist_3_link_92 = 0.09465 * wrist_3_link_90;
-    const double wrist_3_link_93 = (-0.09465) * wrist_3_link_91;
+    const double wrist_3_link_93 = wrist_3_link_91 * (-0.09465);
     const double wrist_3_link_94 = wrist_3_link_73 - (-0.00168332516775);
     const double wrist_3_link_95 = 0.111172755531 + wrist_3_link_94;
     const double wrist_3_link_96 = 0.111172755531 - wrist_3_link_93;
@@ -8840,7 +8840,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_2_link_66 = wrist_3_link_79 - wrist_2_link_65;
     const double wrist_2_link_67 = wrist_2_link_58 * wrist_2_link_59;
     const double wrist_2_link_68 = wrist_2_link_58 * wrist_2_link_60;
-    const double wrist_2_link_69 = 0.017784735 * wrist_2_link_20;
+    const double wrist_2_link_69 = wrist_2_link_20 * 0.017784735;
     const double wrist_2_link_70 = wrist_2_link_19 * wrist_3_link_91;
     const double wrist_2_link_71 = wrist_2_link_17 * wrist_2_link_62;
     const double wrist_2_link_72 = wrist_2_link_18 * wrist_3_link_96;
@@ -8848,10 +8848,10 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_2_link_74 = wrist_2_link_69 + wrist_2_link_71;
     const double wrist_2_link_75 = wrist_2_link_70 + wrist_2_link_72;
     const double wrist_2_link_76 = wrist_2_link_19 * wrist_3_link_98;
-    const double wrist_2_link_77 = (-1.4069) * wrist_2_link_20;
+    const double wrist_2_link_77 = wrist_2_link_20 * (-1.4069);
     const double wrist_2_link_78 = wrist_2_link_19 * wrist_3_link_90;
     const double wrist_2_link_79 = wrist_2_link_18 * wrist_3_link_91;
-    const double wrist_2_link_80 = (-0.017784735) * wrist_2_link_17;
+    const double wrist_2_link_80 = wrist_2_link_17 * (-0.017784735);
     const double wrist_2_link_81 = wrist_2_link_18 * wrist_3_link_92;
     const double wrist_2_link_82 = wrist_2_link_76 + wrist_2_link_79;
     const double wrist_2_link_83 = wrist_2_link_77 + wrist_2_link_80;
@@ -8879,8 +8879,8 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_2_link_105 = trig.sin_q[4] * wrist_2_link_97;
     const double wrist_2_link_106 = trig.cos_q[4] * wrist_2_link_96;
     const double wrist_2_link_107 = wrist_2_link_106 - wrist_2_link_105;
-    const double wrist_2_link_108 = 0.017784735 * trig.sin_q[4];
-    const double wrist_2_link_109 = (-0.017784735) * trig.cos_q[4];
+    const double wrist_2_link_108 = trig.sin_q[4] * 0.017784735;
+    const double wrist_2_link_109 = trig.cos_q[4] * (-0.017784735);
     const double wrist_2_link_110 = trig.cos_q[4] * wrist_3_link_91;
     const double wrist_2_link_111 = trig.sin_q[4] * wrist_3_link_91;
     const double wrist_2_link_112 = trig.sin_q[4] * wrist_2_link_110;
@@ -8898,10 +8898,10 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_2_link_124 = wrist_2_link_122 + wrist_2_link_123;
     const double wrist_2_link_125 = trig.cos_q[4] * wrist_3_link_92;
     const double wrist_2_link_126 = trig.cos_q[4] * wrist_3_link_98;
-    const double wrist_2_link_127 = (-1.4069) * trig.sin_q[4];
+    const double wrist_2_link_127 = trig.sin_q[4] * (-1.4069);
     const double wrist_2_link_128 = trig.cos_q[4] * wrist_3_link_90;
     const double wrist_2_link_129 = trig.sin_q[4] * wrist_3_link_98;
-    const double wrist_2_link_130 = 1.4069 * trig.cos_q[4];
+    const double wrist_2_link_130 = trig.cos_q[4] * 1.4069;
     const double wrist_2_link_131 = trig.sin_q[4] * wrist_3_link_90;
     const double wrist_2_link_132 = trig.sin_q[4] * wrist_2_link_127;
     const double wrist_2_link_133 = trig.cos_q[4] * wrist_2_link_126;
@@ -9777,10 +9777,10 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double upper_arm_link_195 = trig.sin_q[0] * upper_arm_link_1;
     const double upper_arm_link_196 = trig.cos_q[0] * upper_arm_link_3;
     const double upper_arm_link_197 = trig.sin_q[0] * upper_arm_link_3;
-    const double upper_arm_link_198 = (-0.13585) * trig.sin_q[0];
+    const double upper_arm_link_198 = trig.sin_q[0] * (-0.13585);
     const double upper_arm_link_199 = 0.13585 * trig.cos_q[0];
     const double upper_arm_link_200 = 0.089159 * trig.cos_q[0];
-    const double upper_arm_link_201 = (-0.089159) * trig.sin_q[0];
+    const double upper_arm_link_201 = trig.sin_q[0] * (-0.089159);
     const double upper_arm_link_202 = trig.sin_q[0] * upper_arm_link_199;
     const double upper_arm_link_203 = trig.cos_q[0] * upper_arm_link_198;
     const double upper_arm_link_204 = upper_arm_link_202 + upper_arm_link_203;
@@ -9849,14 +9849,14 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double upper_arm_link_267 = 8.393 * upper_arm_link_199;
     const double upper_arm_link_268 = upper_arm_link_263 + upper_arm_link_266;
     const double upper_arm_link_269 = upper_arm_link_264 + upper_arm_link_267;
-    const double upper_arm_link_270 = 0.748311487 + upper_arm_link_265;
+    const double upper_arm_link_270 = upper_arm_link_265 + 0.748311487;
     const double upper_arm_link_271 = 0.8849018759100001 * upper_arm_link_194;
-    const double upper_arm_link_272 = (-0.8849018759100001) * trig.sin_q[0];
+    const double upper_arm_link_272 = trig.sin_q[0] * (-0.8849018759100001);
     const double upper_arm_link_273 = 0.0151074 * upper_arm_link_196;
     const double upper_arm_link_274 = 0.8849018759100001 * upper_arm_link_195;
     const double upper_arm_link_275 = 0.8849018759100001 * trig.cos_q[0];
     const double upper_arm_link_276 = 0.0151074 * upper_arm_link_197;
-    const double upper_arm_link_277 = (-0.8849018759100001) * upper_arm_link_3;
+    const double upper_arm_link_277 = upper_arm_link_3 * (-0.8849018759100001);
     const double upper_arm_link_278 = 0.0151074 * upper_arm_link_1;
     const double upper_arm_link_279 = upper_arm_link_196 * upper_arm_link_273;
     const double upper_arm_link_280 = trig.sin_q[0] * upper_arm_link_272;
@@ -10072,7 +10072,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double forearm_link_412 = upper_arm_link_3 * trig.sin_q[2];
     const double forearm_link_413 = forearm_link_411 - forearm_link_412;
     const double forearm_link_414 = 0.425 * upper_arm_link_196;
-    const double forearm_link_415 = 0.1197 * trig.sin_q[0];
+    const double forearm_link_415 = trig.sin_q[0] * 0.1197;
     const double forearm_link_416 = forearm_link_414 + forearm_link_415;
     const double forearm_link_417 = 0.425 * upper_arm_link_197;
     const double forearm_link_418 = (-0.1197) * trig.cos_q[0];
@@ -10224,7 +10224,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double forearm_link_564 = forearm_link_558 + forearm_link_561;
     const double forearm_link_565 = forearm_link_559 + forearm_link_562;
     const double forearm_link_566 = 0.19163081355599998 * forearm_link_398;
-    const double forearm_link_567 = (-0.19163081355599998) * trig.sin_q[0];
+    const double forearm_link_567 = trig.sin_q[0] * (-0.19163081355599998);
     const double forearm_link_568 = 0.004095 * forearm_link_407;
     const double forearm_link_569 = 0.19163081355599998 * forearm_link_401;
     const double forearm_link_570 = 0.19163081355599998 * trig.cos_q[0];
@@ -10613,7 +10613,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_1_link_510 = 1.219 * wrist_1_link_374;
     const double wrist_1_link_511 = 1.219 * wrist_1_link_375;
     const double wrist_1_link_512 = 0.111172755531 * wrist_1_link_354;
-    const double wrist_1_link_513 = (-0.111172755531) * trig.sin_q[0];
+    const double wrist_1_link_513 = trig.sin_q[0] * (-0.111172755531);
     const double wrist_1_link_514 = 0.21942 * wrist_1_link_363;
     const double wrist_1_link_515 = 0.111172755531 * wrist_1_link_357;
     const double wrist_1_link_516 = 0.111172755531 * trig.cos_q[0];
@@ -10840,7 +10840,7 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_2_link_216 = trig.sin_q[4] * wrist_1_link_357;
     const double wrist_2_link_217 = wrist_2_link_215 - wrist_2_link_216;
     const double wrist_2_link_218 = trig.sin_q[4] * wrist_1_link_360;
-    const double wrist_2_link_219 = (-0.093) * trig.sin_q[0];
+    const double wrist_2_link_219 = trig.sin_q[0] * (-0.093);
     const double wrist_2_link_220 = 0.093 * trig.cos_q[0];
     const double wrist_2_link_221 = wrist_1_link_373 + wrist_2_link_219;
     const double wrist_2_link_222 = wrist_1_link_374 + wrist_2_link_220;
@@ -12393,9 +12393,9 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_1_link_747 = trig.sin_q[0] * wrist_2_link_934;
     const double wrist_1_link_748 = trig.cos_q[0] * wrist_2_link_933;
     const double wrist_1_link_749 = wrist_1_link_747 + wrist_1_link_748;
-    const double wrist_1_link_750 = (-2.6259) * wrist_1_link_376;
-    const double wrist_1_link_751 = (-2.6259) * wrist_1_link_377;
-    const double wrist_1_link_752 = 2.6259 * wrist_1_link_380;
+    const double wrist_1_link_750 = wrist_1_link_376 * (-2.6259);
+    const double wrist_1_link_751 = wrist_1_link_377 * (-2.6259);
+    const double wrist_1_link_752 = wrist_1_link_380 * 2.6259;
     const double wrist_1_link_753 = wrist_1_link_745 + wrist_1_link_750;
     const double wrist_1_link_754 = wrist_1_link_746 + wrist_1_link_751;
     const double wrist_1_link_755 = wrist_1_link_752 - wrist_1_link_749;
@@ -12583,9 +12583,9 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_1_link_937 = wrist_1_link_499 * wrist_2_link_934;
     const double wrist_1_link_938 = wrist_1_link_500 * wrist_2_link_933;
     const double wrist_1_link_939 = wrist_1_link_938 - wrist_1_link_937;
-    const double wrist_1_link_940 = 2.6259 * wrist_1_link_502;
-    const double wrist_1_link_941 = 2.6259 * wrist_1_link_503;
-    const double wrist_1_link_942 = 2.6259 * wrist_1_link_504;
+    const double wrist_1_link_940 = wrist_1_link_502 * 2.6259;
+    const double wrist_1_link_941 = wrist_1_link_503 * 2.6259;
+    const double wrist_1_link_942 = wrist_1_link_504 * 2.6259;
     const double wrist_1_link_943 = wrist_1_link_940 - wrist_1_link_933;
     const double wrist_1_link_944 = wrist_1_link_941 - wrist_1_link_936;
     const double wrist_1_link_945 = wrist_1_link_942 - wrist_1_link_939;
@@ -12643,9 +12643,9 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double wrist_1_link_997 = upper_arm_link_259 * wrist_2_link_934;
     const double wrist_1_link_998 = upper_arm_link_260 * wrist_2_link_933;
     const double wrist_1_link_999 = wrist_1_link_997 - wrist_1_link_998;
-    const double wrist_1_link_1000 = 2.6259 * wrist_1_link_506;
-    const double wrist_1_link_1001 = 2.6259 * wrist_1_link_507;
-    const double wrist_1_link_1002 = 2.6259 * wrist_1_link_508;
+    const double wrist_1_link_1000 = wrist_1_link_506 * 2.6259;
+    const double wrist_1_link_1001 = wrist_1_link_507 * 2.6259;
+    const double wrist_1_link_1002 = wrist_1_link_508 * 2.6259;
     const double wrist_1_link_1003 = wrist_1_link_1000 - wrist_1_link_993;
     const double wrist_1_link_1004 = wrist_1_link_996 + wrist_1_link_1001;
     const double wrist_1_link_1005 = wrist_1_link_1002 - wrist_1_link_999;
@@ -12713,9 +12713,9 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double forearm_link_816 = trig.sin_q[0] * wrist_1_link_1013;
     const double forearm_link_817 = trig.cos_q[0] * wrist_1_link_1012;
     const double forearm_link_818 = forearm_link_816 + forearm_link_817;
-    const double forearm_link_819 = (-4.9009) * forearm_link_424;
-    const double forearm_link_820 = (-4.9009) * forearm_link_425;
-    const double forearm_link_821 = 4.9009 * forearm_link_428;
+    const double forearm_link_819 = forearm_link_424 * (-4.9009);
+    const double forearm_link_820 = forearm_link_425 * (-4.9009);
+    const double forearm_link_821 = forearm_link_428 * 4.9009;
     const double forearm_link_822 = forearm_link_814 + forearm_link_819;
     const double forearm_link_823 = forearm_link_815 + forearm_link_820;
     const double forearm_link_824 = forearm_link_821 - forearm_link_818;
@@ -12903,9 +12903,9 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double forearm_link_1006 = forearm_link_547 * wrist_1_link_1013;
     const double forearm_link_1007 = forearm_link_548 * wrist_1_link_1012;
     const double forearm_link_1008 = forearm_link_1007 - forearm_link_1006;
-    const double forearm_link_1009 = 4.9009 * forearm_link_550;
-    const double forearm_link_1010 = 4.9009 * forearm_link_551;
-    const double forearm_link_1011 = 4.9009 * forearm_link_552;
+    const double forearm_link_1009 = forearm_link_550 * 4.9009;
+    const double forearm_link_1010 = forearm_link_551 * 4.9009;
+    const double forearm_link_1011 = forearm_link_552 * 4.9009;
     const double forearm_link_1012 = forearm_link_1009 - forearm_link_1002;
     const double forearm_link_1013 = forearm_link_1010 - forearm_link_1005;
     const double forearm_link_1014 = forearm_link_1011 - forearm_link_1008;
@@ -12963,9 +12963,9 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double forearm_link_1066 = upper_arm_link_259 * wrist_1_link_1013;
     const double forearm_link_1067 = upper_arm_link_260 * wrist_1_link_1012;
     const double forearm_link_1068 = forearm_link_1066 - forearm_link_1067;
-    const double forearm_link_1069 = 4.9009 * forearm_link_554;
-    const double forearm_link_1070 = 4.9009 * forearm_link_555;
-    const double forearm_link_1071 = 4.9009 * forearm_link_556;
+    const double forearm_link_1069 = forearm_link_554 * 4.9009;
+    const double forearm_link_1070 = forearm_link_555 * 4.9009;
+    const double forearm_link_1071 = forearm_link_556 * 4.9009;
     const double forearm_link_1072 = forearm_link_1069 - forearm_link_1062;
     const double forearm_link_1073 = forearm_link_1065 + forearm_link_1070;
     const double forearm_link_1074 = forearm_link_1071 - forearm_link_1068;
@@ -13020,8 +13020,8 @@ void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const doubl
     const double upper_arm_link_485 = upper_arm_link_483 - upper_arm_link_477;
     const double upper_arm_link_486 = trig.cos_q[0] * forearm_link_1083;
     const double upper_arm_link_487 = trig.sin_q[0] * forearm_link_1083;
-    const double upper_arm_link_488 = (-13.2939) * upper_arm_link_200;
-    const double upper_arm_link_489 = 13.2939 * upper_arm_link_201;
+    const double upper_arm_link_488 = upper_arm_link_200 * (-13.2939);
+    const double upper_arm_link_489 = upper_arm_link_201 * 13.2939;
     const double upper_arm_link_490 = upper_arm_link_486 + upper_arm_link_488;
     const double upper_arm_link_491 = upper_arm_link_487 + upper_arm_link_489;
     const double upper_arm_link_492 = upper_arm_link_204 * forearm_link_1102;
@@ -15354,7 +15354,7 @@ void frame_placements_trig(const double q[nq], const JointTrig& trig, double R[n
     const double upper_arm_link_5 = trig.sin_q[0] * upper_arm_link_1;
     const double upper_arm_link_6 = trig.cos_q[0] * upper_arm_link_3;
     const double upper_arm_link_7 = trig.sin_q[0] * upper_arm_link_3;
-    const double upper_arm_link_8 = (-0.13585) * trig.sin_q[0];
+    const double upper_arm_link_8 = trig.sin_q[0] * (-0.13585);
     const double upper_arm_link_9 = 0.13585 * trig.cos_q[0];
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; kinematics
@@ -15377,7 +15377,7 @@ void frame_placements_trig(const double q[nq], const JointTrig& trig, double R[n
     const double forearm_link_16 = upper_arm_link_3 * trig.sin_q[2];
     const double forearm_link_17 = forearm_link_15 - forearm_link_16;
     const double forearm_link_18 = 0.425 * upper_arm_link_6;
-    const double forearm_link_19 = 0.1197 * trig.sin_q[0];
+    const double forearm_link_19 = trig.sin_q[0] * 0.1197;
     const double forearm_link_20 = forearm_link_18 + forearm_link_19;
     const double forearm_link_21 = 0.425 * upper_arm_link_7;
     const double forearm_link_22 = (-0.1197) * trig.cos_q[0];
@@ -15432,7 +15432,7 @@ void frame_placements_trig(const double q[nq], const JointTrig& trig, double R[n
     const double wrist_2_link_11 = wrist_1_link_9 * trig.sin_q[4];
     const double wrist_2_link_12 = wrist_2_link_10 - wrist_2_link_11;
     const double wrist_2_link_13 = wrist_1_link_12 * trig.sin_q[4];
-    const double wrist_2_link_14 = (-0.093) * trig.sin_q[0];
+    const double wrist_2_link_14 = trig.sin_q[0] * (-0.093);
     const double wrist_2_link_15 = 0.093 * trig.cos_q[0];
     const double wrist_2_link_16 = wrist_1_link_25 + wrist_2_link_14;
     const double wrist_2_link_17 = wrist_1_link_26 + wrist_2_link_15;
@@ -15469,15 +15469,15 @@ void frame_placements_trig(const double q[nq], const JointTrig& trig, double R[n
     const double wrist_3_link_26 = wrist_3_link_25 - wrist_2_link_9;
     const double wrist_3_link_27 = 4.896638650109253e-12 * wrist_3_link_5;
     const double wrist_3_link_28 = wrist_2_link_12 + wrist_3_link_27;
-    const double wrist_3_link_29 = (-4.896638650109253e-12) * wrist_3_link_8;
+    const double wrist_3_link_29 = wrist_3_link_8 * (-4.896638650109253e-12);
     const double wrist_3_link_30 = wrist_2_link_13 + wrist_3_link_29;
-    const double wrist_3_link_31 = (-4.896638650109253e-12) * wrist_2_link_9;
+    const double wrist_3_link_31 = wrist_2_link_9 * (-4.896638650109253e-12);
     const double wrist_3_link_32 = wrist_3_link_31 - wrist_3_link_2;
     const double wrist_3_link_33 = 4.896638650109253e-12 * wrist_2_link_12;
     const double wrist_3_link_34 = wrist_3_link_33 - wrist_3_link_5;
     const double wrist_3_link_35 = 4.896638650109253e-12 * wrist_2_link_13;
     const double wrist_3_link_36 = wrist_3_link_8 + wrist_3_link_35;
-    const double wrist_3_link_37 = (-0.0823) * wrist_2_link_9;
+    const double wrist_3_link_37 = wrist_2_link_9 * (-0.0823);
     const double wrist_3_link_38 = 0.0823 * wrist_2_link_12;
     const double wrist_3_link_39 = 0.0823 * wrist_2_link_13;
     const double wrist_3_link_40 = wrist_3_link_22 + wrist_3_link_37;
@@ -15564,7 +15564,7 @@ void frame_jacobians_trig(const double q[nq], const JointTrig& trig,
     const double upper_arm_link_5 = trig.sin_q[0] * upper_arm_link_1;
     const double upper_arm_link_6 = trig.cos_q[0] * upper_arm_link_3;
     const double upper_arm_link_7 = trig.sin_q[0] * upper_arm_link_3;
-    const double upper_arm_link_8 = (-0.13585) * trig.sin_q[0];
+    const double upper_arm_link_8 = trig.sin_q[0] * (-0.13585);
     const double upper_arm_link_9 = 0.13585 * trig.cos_q[0];
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; kinematics
@@ -15587,7 +15587,7 @@ void frame_jacobians_trig(const double q[nq], const JointTrig& trig,
     const double forearm_link_16 = upper_arm_link_3 * trig.sin_q[2];
     const double forearm_link_17 = forearm_link_15 - forearm_link_16;
     const double forearm_link_18 = 0.425 * upper_arm_link_6;
-    const double forearm_link_19 = 0.1197 * trig.sin_q[0];
+    const double forearm_link_19 = trig.sin_q[0] * 0.1197;
     const double forearm_link_20 = forearm_link_18 + forearm_link_19;
     const double forearm_link_21 = 0.425 * upper_arm_link_7;
     const double forearm_link_22 = (-0.1197) * trig.cos_q[0];
@@ -15636,7 +15636,7 @@ void frame_jacobians_trig(const double q[nq], const JointTrig& trig,
     const double wrist_2_link_5 = wrist_1_link_9 * trig.sin_q[4];
     const double wrist_2_link_6 = wrist_2_link_4 - wrist_2_link_5;
     const double wrist_2_link_7 = wrist_1_link_12 * trig.sin_q[4];
-    const double wrist_2_link_8 = (-0.093) * trig.sin_q[0];
+    const double wrist_2_link_8 = trig.sin_q[0] * (-0.093);
     const double wrist_2_link_9 = 0.093 * trig.cos_q[0];
     const double wrist_2_link_10 = wrist_1_link_25 + wrist_2_link_8;
     const double wrist_2_link_11 = wrist_1_link_26 + wrist_2_link_9;
@@ -15650,7 +15650,7 @@ void frame_jacobians_trig(const double q[nq], const JointTrig& trig,
     const double wrist_3_link_5 = wrist_1_link_27 + wrist_3_link_2;
 
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; its frames
-    const double wrist_3_link_6 = (-0.0823) * wrist_2_link_2;
+    const double wrist_3_link_6 = wrist_2_link_2 * (-0.0823);
     const double wrist_3_link_7 = 0.0823 * wrist_2_link_6;
     const double wrist_3_link_8 = 0.0823 * wrist_2_link_7;
     const double wrist_3_link_9 = wrist_3_link_3 + wrist_3_link_6;
@@ -15730,7 +15730,7 @@ void frame_jacobians_trig(const double q[nq], const JointTrig& trig,
 
     // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; its joint's Jacobian columns
     const double upper_arm_link_10 = 0.089159 * trig.cos_q[0];
-    const double upper_arm_link_11 = (-0.089159) * trig.sin_q[0];
+    const double upper_arm_link_11 = trig.sin_q[0] * (-0.089159);
     const double upper_arm_link_12 = trig.sin_q[0] * upper_arm_link_9;
     const double upper_arm_link_13 = trig.cos_q[0] * upper_arm_link_8;
     const double upper_arm_link_14 = upper_arm_link_12 + upper_arm_link_13;
@@ -15879,7 +15879,7 @@ void frame_jacobians_local_trig(const double q[nq], const JointTrig& trig,
     const double upper_arm_link_5 = trig.sin_q[0] * upper_arm_link_1;
     const double upper_arm_link_6 = trig.cos_q[0] * upper_arm_link_3;
     const double upper_arm_link_7 = trig.sin_q[0] * upper_arm_link_3;
-    const double upper_arm_link_8 = (-0.13585) * trig.sin_q[0];
+    const double upper_arm_link_8 = trig.sin_q[0] * (-0.13585);
     const double upper_arm_link_9 = 0.13585 * trig.cos_q[0];
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; kinematics
@@ -15902,7 +15902,7 @@ void frame_jacobians_local_trig(const double q[nq], const JointTrig& trig,
     const double forearm_link_16 = upper_arm_link_3 * trig.sin_q[2];
     const double forearm_link_17 = forearm_link_15 - forearm_link_16;
     const double forearm_link_18 = 0.425 * upper_arm_link_6;
-    const double forearm_link_19 = 0.1197 * trig.sin_q[0];
+    const double forearm_link_19 = trig.sin_q[0] * 0.1197;
     const double forearm_link_20 = forearm_link_18 + forearm_link_19;
     const double forearm_link_21 = 0.425 * upper_arm_link_7;
     const double forearm_link_22 = (-0.1197) * trig.cos_q[0];
@@ -15957,7 +15957,7 @@ void frame_jacobians_local_trig(const double q[nq], const JointTrig& trig,
     const double wrist_2_link_11 = wrist_1_link_9 * trig.sin_q[4];
     const double wrist_2_link_12 = wrist_2_link_10 - wrist_2_link_11;
     const double wrist_2_link_13 = wrist_1_link_12 * trig.sin_q[4];
-    const double wrist_2_link_14 = (-0.093) * trig.sin_q[0];
+    const double wrist_2_link_14 = trig.sin_q[0] * (-0.093);
     const double wrist_2_link_15 = 0.093 * trig.cos_q[0];
     const double wrist_2_link_16 = wrist_1_link_25 + wrist_2_link_14;
     const double wrist_2_link_17 = wrist_1_link_26 + wrist_2_link_15;
@@ -15994,15 +15994,15 @@ void frame_jacobians_local_trig(const double q[nq], const JointTrig& trig,
     const double wrist_3_link_26 = wrist_3_link_25 - wrist_2_link_9;
     const double wrist_3_link_27 = 4.896638650109253e-12 * wrist_3_link_5;
     const double wrist_3_link_28 = wrist_2_link_12 + wrist_3_link_27;
-    const double wrist_3_link_29 = (-4.896638650109253e-12) * wrist_3_link_8;
+    const double wrist_3_link_29 = wrist_3_link_8 * (-4.896638650109253e-12);
     const double wrist_3_link_30 = wrist_2_link_13 + wrist_3_link_29;
-    const double wrist_3_link_31 = (-4.896638650109253e-12) * wrist_2_link_9;
+    const double wrist_3_link_31 = wrist_2_link_9 * (-4.896638650109253e-12);
     const double wrist_3_link_32 = wrist_3_link_31 - wrist_3_link_2;
     const double wrist_3_link_33 = 4.896638650109253e-12 * wrist_2_link_12;
     const double wrist_3_link_34 = wrist_3_link_33 - wrist_3_link_5;
     const double wrist_3_link_35 = 4.896638650109253e-12 * wrist_2_link_13;
     const double wrist_3_link_36 = wrist_3_link_8 + wrist_3_link_35;
-    const double wrist_3_link_37 = (-0.0823) * wrist_2_link_9;
+    const double wrist_3_link_37 = wrist_2_link_9 * (-0.0823);
     const double wrist_3_link_38 = 0.0823 * wrist_2_link_12;
     const double wrist_3_link_39 = 0.0823 * wrist_2_link_13;
     const double wrist_3_link_40 = wrist_3_link_22 + wrist_3_link_37;
@@ -16181,7 +16181,7 @@ void frame_jacobians_local_trig(const double q[nq], const JointTrig& trig,
 
     // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; its joint's Jacobian columns
     const double upper_arm_link_10 = 0.089159 * trig.cos_q[0];
-    const double upper_arm_link_11 = (-0.089159) * trig.sin_q[0];
+    const double upper_arm_link_11 = trig.sin_q[0] * (-0.089159);
     const double upper_arm_link_12 = trig.sin_q[0] * upper_arm_link_9;
     const double upper_arm_link_13 = trig.cos_q[0] * upper_arm_link_8;
     const double upper_arm_link_14 = upper_arm_link_12 + upper_arm_link_13;
@@ -16498,12 +16498,12 @@ void frame_accelerations_trig(const double q[nq], const JointTrig& trig, const d
     const double upper_arm_link_5 = trig.sin_q[0] * upper_arm_link_1;
     const double upper_arm_link_6 = trig.cos_q[0] * upper_arm_link_3;
     const double upper_arm_link_7 = trig.sin_q[0] * upper_arm_link_3;
-    const double upper_arm_link_8 = (-0.13585) * trig.sin_q[0];
+    const double upper_arm_link_8 = trig.sin_q[0] * (-0.13585);
     const double upper_arm_link_9 = 0.13585 * trig.cos_q[0];
     const double upper_arm_link_10 = v[1] * trig.sin_q[0];
     const double upper_arm_link_11 = v[1] * trig.cos_q[0];
     const double upper_arm_link_12 = 0.089159 * upper_arm_link_11;
-    const double upper_arm_link_13 = (-0.089159) * upper_arm_link_10;
+    const double upper_arm_link_13 = upper_arm_link_10 * (-0.089159);
     const double upper_arm_link_14 = upper_arm_link_9 * upper_arm_link_10;
     const double upper_arm_link_15 = upper_arm_link_8 * upper_arm_link_11;
     const double upper_arm_link_16 = upper_arm_link_14 + upper_arm_link_15;
@@ -16532,7 +16532,7 @@ void frame_accelerations_trig(const double q[nq], const JointTrig& trig, const d
     const double forearm_link_16 = upper_arm_link_3 * trig.sin_q[2];
     const double forearm_link_17 = forearm_link_15 - forearm_link_16;
     const double forearm_link_18 = 0.425 * upper_arm_link_6;
-    const double forearm_link_19 = 0.1197 * trig.sin_q[0];
+    const double forearm_link_19 = trig.sin_q[0] * 0.1197;
     const double forearm_link_20 = forearm_link_18 + forearm_link_19;
     const double forearm_link_21 = 0.425 * upper_arm_link_7;
     const double forearm_link_22 = (-0.1197) * trig.cos_q[0];
@@ -16658,7 +16658,7 @@ void frame_accelerations_trig(const double q[nq], const JointTrig& trig, const d
     const double wrist_2_link_4 = wrist_1_link_9 * trig.sin_q[4];
     const double wrist_2_link_5 = wrist_2_link_3 - wrist_2_link_4;
     const double wrist_2_link_6 = wrist_1_link_12 * trig.sin_q[4];
-    const double wrist_2_link_7 = (-0.093) * trig.sin_q[0];
+    const double wrist_2_link_7 = trig.sin_q[0] * (-0.093);
     const double wrist_2_link_8 = 0.093 * trig.cos_q[0];
     const double wrist_2_link_9 = wrist_1_link_25 + wrist_2_link_7;
     const double wrist_2_link_10 = wrist_1_link_26 + wrist_2_link_8;
@@ -16780,7 +16780,7 @@ void frame_accelerations_trig(const double q[nq], const JointTrig& trig, const d
     const double wrist_3_link_59 = wrist_2_link_64 + wrist_3_link_53;
 
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; its frames
-    const double wrist_3_link_60 = (-0.0823) * wrist_2_link_2;
+    const double wrist_3_link_60 = wrist_2_link_2 * (-0.0823);
     const double wrist_3_link_61 = 0.0823 * wrist_2_link_5;
     const double wrist_3_link_62 = 0.0823 * wrist_2_link_6;
     const double wrist_3_link_63 = wrist_3_link_3 + wrist_3_link_60;
@@ -16872,12 +16872,12 @@ void frame_accelerations_local_trig(const double q[nq], const JointTrig& trig, c
     const double upper_arm_link_5 = trig.sin_q[0] * upper_arm_link_1;
     const double upper_arm_link_6 = trig.cos_q[0] * upper_arm_link_3;
     const double upper_arm_link_7 = trig.sin_q[0] * upper_arm_link_3;
-    const double upper_arm_link_8 = (-0.13585) * trig.sin_q[0];
+    const double upper_arm_link_8 = trig.sin_q[0] * (-0.13585);
     const double upper_arm_link_9 = 0.13585 * trig.cos_q[0];
     const double upper_arm_link_10 = v[1] * trig.sin_q[0];
     const double upper_arm_link_11 = v[1] * trig.cos_q[0];
     const double upper_arm_link_12 = 0.089159 * upper_arm_link_11;
-    const double upper_arm_link_13 = (-0.089159) * upper_arm_link_10;
+    const double upper_arm_link_13 = upper_arm_link_10 * (-0.089159);
     const double upper_arm_link_14 = upper_arm_link_9 * upper_arm_link_10;
     const double upper_arm_link_15 = upper_arm_link_8 * upper_arm_link_11;
     const double upper_arm_link_16 = upper_arm_link_14 + upper_arm_link_15;
@@ -16906,7 +16906,7 @@ void frame_accelerations_local_trig(const double q[nq], const JointTrig& trig, c
     const double forearm_link_16 = upper_arm_link_3 * trig.sin_q[2];
     const double forearm_link_17 = forearm_link_15 - forearm_link_16;
     const double forearm_link_18 = 0.425 * upper_arm_link_6;
-    const double forearm_link_19 = 0.1197 * trig.sin_q[0];
+    const double forearm_link_19 = trig.sin_q[0] * 0.1197;
     const double forearm_link_20 = forearm_link_18 + forearm_link_19;
     const double forearm_link_21 = 0.425 * upper_arm_link_7;
     const double forearm_link_22 = (-0.1197) * trig.cos_q[0];
@@ -17039,7 +17039,7 @@ void frame_accelerations_local_trig(const double q[nq], const JointTrig& trig, c
     const double wrist_2_link_11 = wrist_1_link_9 * trig.sin_q[4];
     const double wrist_2_link_12 = wrist_2_link_10 - wrist_2_link_11;
     const double wrist_2_link_13 = wrist_1_link_12 * trig.sin_q[4];
-    const double wrist_2_link_14 = (-0.093) * trig.sin_q[0];
+    const double wrist_2_link_14 = trig.sin_q[0] * (-0.093);
     const double wrist_2_link_15 = 0.093 * trig.cos_q[0];
     const double wrist_2_link_16 = wrist_1_link_25 + wrist_2_link_14;
     const double wrist_2_link_17 = wrist_1_link_26 + wrist_2_link_15;
@@ -17183,15 +17183,15 @@ void frame_accelerations_local_trig(const double q[nq], const JointTrig& trig, c
     const double wrist_3_link_79 = wrist_3_link_78 - wrist_2_link_9;
     const double wrist_3_link_80 = 4.896638650109253e-12 * wrist_3_link_5;
     const double wrist_3_link_81 = wrist_2_link_12 + wrist_3_link_80;
-    const double wrist_3_link_82 = (-4.896638650109253e-12) * wrist_3_link_8;
+    const double wrist_3_link_82 = wrist_3_link_8 * (-4.896638650109253e-12);
     const double wrist_3_link_83 = wrist_2_link_13 + wrist_3_link_82;
-    const double wrist_3_link_84 = (-4.896638650109253e-12) * wrist_2_link_9;
+    const double wrist_3_link_84 = wrist_2_link_9 * (-4.896638650109253e-12);
     const double wrist_3_link_85 = wrist_3_link_84 - wrist_3_link_2;
     const double wrist_3_link_86 = 4.896638650109253e-12 * wrist_2_link_12;
     const double wrist_3_link_87 = wrist_3_link_86 - wrist_3_link_5;
     const double wrist_3_link_88 = 4.896638650109253e-12 * wrist_2_link_13;
     const double wrist_3_link_89 = wrist_3_link_8 + wrist_3_link_88;
-    const double wrist_3_link_90 = (-0.0823) * wrist_2_link_9;
+    const double wrist_3_link_90 = wrist_2_link_9 * (-0.0823);
     const double wrist_3_link_91 = 0.0823 * wrist_2_link_12;
     const double wrist_3_link_92 = 0.0823 * wrist_2_link_13;
     const double wrist_3_link_93 = wrist_3_link_21 + wrist_3_link_90;
@@ -17387,9 +17387,9 @@ void com_trig(const double q[nq], const JointTrig& trig, double c[3], double Jc[
     const double wrist_1_link_12 = wrist_1_link_10 + wrist_1_link_11;
 
     // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; composite inertia
-    const double wrist_1_link_13 = 0.017784735 * wrist_1_link_3;
-    const double wrist_1_link_14 = 0.017784735 * wrist_1_link_1;
-    const double wrist_1_link_15 = 1.030009275 + wrist_1_link_14;
+    const double wrist_1_link_13 = wrist_1_link_3 * 0.017784735;
+    const double wrist_1_link_14 = wrist_1_link_1 * 0.017784735;
+    const double wrist_1_link_15 = wrist_1_link_14 + 1.030009275;
     const double wrist_1_link_16 = 0.56875 + wrist_1_link_15;
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; composite inertia
@@ -17399,7 +17399,7 @@ void com_trig(const double q[nq], const JointTrig& trig, double c[3], double Jc[
     const double forearm_link_21 = trig.cos_q[2] * wrist_1_link_16;
     const double forearm_link_22 = trig.sin_q[2] * wrist_1_link_13;
     const double forearm_link_23 = forearm_link_21 - forearm_link_22;
-    const double forearm_link_24 = 2.0828824999999997 + forearm_link_23;
+    const double forearm_link_24 = forearm_link_23 + 2.0828824999999997;
     const double forearm_link_25 = 2.3500400000000004 + forearm_link_24;
 
     // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; composite inertia
@@ -17411,19 +17411,19 @@ void com_trig(const double q[nq], const JointTrig& trig, double c[3], double Jc[
     const double upper_arm_link_13 = upper_arm_link_11 - upper_arm_link_12;
 
     // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; composite inertia
-    const double shoulder_link_0 = (-1.3501802850000002) * trig.sin_q[0];
+    const double shoulder_link_0 = trig.sin_q[0] * (-1.3501802850000002);
     const double shoulder_link_1 = trig.cos_q[0] * upper_arm_link_10;
     const double shoulder_link_2 = shoulder_link_0 + shoulder_link_1;
-    const double shoulder_link_3 = 1.3501802850000002 * trig.cos_q[0];
+    const double shoulder_link_3 = trig.cos_q[0] * 1.3501802850000002;
     const double shoulder_link_4 = trig.sin_q[0] * upper_arm_link_10;
     const double shoulder_link_5 = shoulder_link_3 + shoulder_link_4;
-    const double shoulder_link_6 = 1.5151591301 + upper_arm_link_13;
-    const double shoulder_link_7 = 0.058844644254703156 * shoulder_link_2;
-    const double shoulder_link_8 = 0.058844644254703156 * shoulder_link_5;
-    const double shoulder_link_9 = 0.058844644254703156 * shoulder_link_6;
+    const double shoulder_link_6 = upper_arm_link_13 + 1.5151591301;
+    const double shoulder_link_7 = shoulder_link_2 * 0.058844644254703156;
+    const double shoulder_link_8 = shoulder_link_5 * 0.058844644254703156;
+    const double shoulder_link_9 = shoulder_link_6 * 0.058844644254703156;
 
     // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; its joint's Jacobian columns
-    const double shoulder_link_10 = (-1.3501802850000002) * trig.cos_q[0];
+    const double shoulder_link_10 = trig.cos_q[0] * (-1.3501802850000002);
     const double shoulder_link_11 = shoulder_link_10 - shoulder_link_4;
     const double shoulder_link_12 = 0.058844644254703156 * shoulder_link_11;
 
@@ -17436,7 +17436,7 @@ void com_trig(const double q[nq], const JointTrig& trig, double c[3], double Jc[
     const double upper_arm_link_19 = upper_arm_link_18 - upper_arm_link_17;
     const double upper_arm_link_20 = 0.058844644254703156 * upper_arm_link_16;
     const double upper_arm_link_21 = 0.058844644254703156 * upper_arm_link_19;
-    const double upper_arm_link_22 = (-0.058844644254703156) * upper_arm_link_10;
+    const double upper_arm_link_22 = upper_arm_link_10 * (-0.058844644254703156);
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; its joint's Jacobian columns
     const double forearm_link_26 = forearm_link_11 * wrist_1_link_13;
@@ -17453,9 +17453,9 @@ void com_trig(const double q[nq], const JointTrig& trig, double c[3], double Jc[
     const double forearm_link_37 = (-0.058844644254703156) * forearm_link_34;
 
     // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; its joint's Jacobian columns
-    const double wrist_1_link_17 = 0.017784735 * wrist_1_link_6;
-    const double wrist_1_link_18 = 0.017784735 * wrist_1_link_9;
-    const double wrist_1_link_19 = (-0.017784735) * wrist_1_link_12;
+    const double wrist_1_link_17 = wrist_1_link_6 * 0.017784735;
+    const double wrist_1_link_18 = wrist_1_link_9 * 0.017784735;
+    const double wrist_1_link_19 = wrist_1_link_12 * (-0.017784735);
     const double wrist_1_link_20 = 0.058844644254703156 * wrist_1_link_17;
     const double wrist_1_link_21 = 0.058844644254703156 * wrist_1_link_18;
     const double wrist_1_link_22 = 0.058844644254703156 * wrist_1_link_19;
@@ -17508,7 +17508,7 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     const double upper_arm_link_5 = trig.sin_q[0] * upper_arm_link_1;
     const double upper_arm_link_6 = trig.cos_q[0] * upper_arm_link_3;
     const double upper_arm_link_7 = trig.sin_q[0] * upper_arm_link_3;
-    const double upper_arm_link_8 = (-0.13585) * trig.sin_q[0];
+    const double upper_arm_link_8 = trig.sin_q[0] * (-0.13585);
     const double upper_arm_link_9 = 0.13585 * trig.cos_q[0];
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; kinematics
@@ -17531,7 +17531,7 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     const double forearm_link_16 = upper_arm_link_3 * trig.sin_q[2];
     const double forearm_link_17 = forearm_link_15 - forearm_link_16;
     const double forearm_link_18 = 0.425 * upper_arm_link_6;
-    const double forearm_link_19 = 0.1197 * trig.sin_q[0];
+    const double forearm_link_19 = trig.sin_q[0] * 0.1197;
     const double forearm_link_20 = forearm_link_18 + forearm_link_19;
     const double forearm_link_21 = 0.425 * upper_arm_link_7;
     const double forearm_link_22 = (-0.1197) * trig.cos_q[0];
@@ -17590,7 +17590,7 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; composite inertia
     const double wrist_3_link_0 = 0.0171364731454 * trig.cos_q[5];
     const double wrist_3_link_1 = 0.033822 * trig.sin_q[5];
-    const double wrist_3_link_2 = (-0.0171364731454) * trig.sin_q[5];
+    const double wrist_3_link_2 = trig.sin_q[5] * (-0.0171364731454);
     const double wrist_3_link_3 = 0.033822 * trig.cos_q[5];
     const double wrist_3_link_4 = trig.sin_q[5] * wrist_3_link_1;
     const double wrist_3_link_5 = trig.cos_q[5] * wrist_3_link_0;
@@ -17601,7 +17601,7 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     const double wrist_3_link_10 = trig.sin_q[5] * wrist_3_link_3;
     const double wrist_3_link_11 = trig.cos_q[5] * wrist_3_link_2;
     const double wrist_3_link_12 = wrist_3_link_10 + wrist_3_link_11;
-    const double wrist_3_link_13 = 0.00168332516775 + wrist_3_link_6;
+    const double wrist_3_link_13 = wrist_3_link_6 + 0.00168332516775;
     const double wrist_3_link_14 = wrist_3_link_9 - 0.00168332516775;
     const double wrist_3_link_15 = 0.00168332516775 + wrist_3_link_14;
     const double wrist_3_link_16 = 0.111172755531 + wrist_3_link_13;
@@ -17609,10 +17609,10 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
 
     // ---- link 'wrist_2_link' (4) <- 'wrist_1_link' (3); joint 'wrist_2_joint': revolute +z; composite inertia
     const double wrist_2_link_14 = trig.cos_q[4] * wrist_3_link_16;
-    const double wrist_2_link_15 = (-0.12999255384415) * trig.sin_q[4];
+    const double wrist_2_link_15 = trig.sin_q[4] * (-0.12999255384415);
     const double wrist_2_link_16 = trig.cos_q[4] * wrist_3_link_12;
     const double wrist_2_link_17 = trig.sin_q[4] * wrist_3_link_16;
-    const double wrist_2_link_18 = 0.12999255384415 * trig.cos_q[4];
+    const double wrist_2_link_18 = trig.cos_q[4] * 0.12999255384415;
     const double wrist_2_link_19 = trig.sin_q[4] * wrist_3_link_12;
     const double wrist_2_link_20 = trig.sin_q[4] * wrist_2_link_15;
     const double wrist_2_link_21 = trig.cos_q[4] * wrist_2_link_14;
@@ -17623,19 +17623,19 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     const double wrist_2_link_26 = trig.sin_q[4] * wrist_2_link_18;
     const double wrist_2_link_27 = trig.cos_q[4] * wrist_2_link_17;
     const double wrist_2_link_28 = wrist_2_link_27 - wrist_2_link_26;
-    const double wrist_2_link_29 = 0.0121682781 + wrist_2_link_22;
+    const double wrist_2_link_29 = wrist_2_link_22 + 0.0121682781;
     const double wrist_2_link_30 = wrist_2_link_25 - 0.0121682781;
     const double wrist_2_link_31 = 0.0121682781 + wrist_2_link_30;
-    const double wrist_2_link_32 = 0.0121682781 + wrist_3_link_17;
+    const double wrist_2_link_32 = wrist_3_link_17 + 0.0121682781;
     const double wrist_2_link_33 = wrist_2_link_19 - 0.0016539803549999999;
     const double wrist_2_link_34 = 0.111172755531 + wrist_2_link_29;
     const double wrist_2_link_35 = 0.111172755531 + wrist_2_link_31;
     const double wrist_2_link_36 = 0.21942 + wrist_2_link_32;
 
     // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; composite inertia
-    const double wrist_1_link_28 = 0.017784735 * wrist_1_link_3;
-    const double wrist_1_link_29 = 0.017784735 * wrist_1_link_1;
-    const double wrist_1_link_30 = 1.030009275 + wrist_1_link_29;
+    const double wrist_1_link_28 = wrist_1_link_3 * 0.017784735;
+    const double wrist_1_link_29 = wrist_1_link_1 * 0.017784735;
+    const double wrist_1_link_30 = wrist_1_link_29 + 1.030009275;
     const double wrist_1_link_31 = wrist_1_link_3 * wrist_2_link_16;
     const double wrist_1_link_32 = wrist_1_link_1 * wrist_2_link_34;
     const double wrist_1_link_33 = wrist_1_link_31 + wrist_1_link_32;
@@ -17684,7 +17684,7 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     const double forearm_link_31 = trig.cos_q[2] * wrist_1_link_67;
     const double forearm_link_32 = trig.sin_q[2] * wrist_1_link_28;
     const double forearm_link_33 = forearm_link_31 - forearm_link_32;
-    const double forearm_link_34 = 2.0828824999999997 + forearm_link_33;
+    const double forearm_link_34 = forearm_link_33 + 2.0828824999999997;
     const double forearm_link_35 = trig.sin_q[2] * wrist_1_link_65;
     const double forearm_link_36 = trig.cos_q[2] * wrist_1_link_68;
     const double forearm_link_37 = forearm_link_35 + forearm_link_36;
@@ -17711,9 +17711,9 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     const double forearm_link_58 = trig.cos_q[2] * forearm_link_45;
     const double forearm_link_59 = forearm_link_57 + forearm_link_58;
     const double forearm_link_60 = 0.425 * forearm_link_34;
-    const double forearm_link_61 = 0.054558784790999994 + forearm_link_60;
+    const double forearm_link_61 = forearm_link_60 + 0.054558784790999994;
     const double forearm_link_62 = 0.425 * forearm_link_33;
-    const double forearm_link_63 = (-0.01566175149) + forearm_link_62;
+    const double forearm_link_63 = forearm_link_62 + (-0.01566175149);
     const double forearm_link_64 = forearm_link_61 + forearm_link_63;
     const double forearm_link_65 = forearm_link_53 + forearm_link_64;
     const double forearm_link_66 = wrist_1_link_69 - (-0.01566175149);
@@ -17756,33 +17756,33 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     const double upper_arm_link_28 = upper_arm_link_3 * upper_arm_link_24;
     const double upper_arm_link_29 = upper_arm_link_1 * upper_arm_link_19;
     const double upper_arm_link_30 = upper_arm_link_28 + upper_arm_link_29;
-    const double upper_arm_link_31 = 0.12150210104175002 + upper_arm_link_27;
+    const double upper_arm_link_31 = upper_arm_link_27 + 0.12150210104175002;
     const double upper_arm_link_32 = 0.13585 * upper_arm_link_15;
     const double upper_arm_link_33 = upper_arm_link_22 - upper_arm_link_32;
     const double upper_arm_link_34 = 0.00666 + upper_arm_link_31;
 
     // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; composite inertia
-    const double shoulder_link_0 = (-1.3501802850000002) * trig.sin_q[0];
+    const double shoulder_link_0 = trig.sin_q[0] * (-1.3501802850000002);
     const double shoulder_link_1 = trig.cos_q[0] * upper_arm_link_12;
     const double shoulder_link_2 = shoulder_link_0 + shoulder_link_1;
-    const double shoulder_link_3 = 1.3501802850000002 * trig.cos_q[0];
+    const double shoulder_link_3 = trig.cos_q[0] * 1.3501802850000002;
     const double shoulder_link_4 = trig.sin_q[0] * upper_arm_link_12;
     const double shoulder_link_5 = shoulder_link_3 + shoulder_link_4;
-    const double shoulder_link_6 = 1.5151591301 + upper_arm_link_15;
+    const double shoulder_link_6 = upper_arm_link_15 + 1.5151591301;
     const double shoulder_link_7 = trig.sin_q[0] * upper_arm_link_33;
     const double shoulder_link_8 = trig.cos_q[0] * upper_arm_link_30;
     const double shoulder_link_9 = shoulder_link_8 - shoulder_link_7;
     const double shoulder_link_10 = trig.cos_q[0] * upper_arm_link_33;
     const double shoulder_link_11 = trig.sin_q[0] * upper_arm_link_30;
     const double shoulder_link_12 = shoulder_link_10 + shoulder_link_11;
-    const double shoulder_link_13 = 0.058844644254703156 * shoulder_link_2;
-    const double shoulder_link_14 = 0.058844644254703156 * shoulder_link_5;
-    const double shoulder_link_15 = 0.058844644254703156 * shoulder_link_6;
+    const double shoulder_link_13 = shoulder_link_2 * 0.058844644254703156;
+    const double shoulder_link_14 = shoulder_link_5 * 0.058844644254703156;
+    const double shoulder_link_15 = shoulder_link_6 * 0.058844644254703156;
 
     // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; its joint's Jacobian columns
     const double shoulder_link_16 = 0.089159 - shoulder_link_15;
     const double shoulder_link_17 = -upper_arm_link_12;
-    const double shoulder_link_18 = (-1.3501802850000002) * trig.cos_q[0];
+    const double shoulder_link_18 = trig.cos_q[0] * (-1.3501802850000002);
     const double shoulder_link_19 = shoulder_link_18 - shoulder_link_4;
     const double shoulder_link_20 = shoulder_link_2 * shoulder_link_16;
     const double shoulder_link_21 = shoulder_link_16 * shoulder_link_19;
@@ -17897,9 +17897,9 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     const double wrist_1_link_71 = wrist_1_link_25 - shoulder_link_13;
     const double wrist_1_link_72 = wrist_1_link_26 - shoulder_link_14;
     const double wrist_1_link_73 = wrist_1_link_27 - shoulder_link_15;
-    const double wrist_1_link_74 = 0.017784735 * wrist_1_link_6;
-    const double wrist_1_link_75 = 0.017784735 * wrist_1_link_9;
-    const double wrist_1_link_76 = (-0.017784735) * wrist_1_link_12;
+    const double wrist_1_link_74 = wrist_1_link_6 * 0.017784735;
+    const double wrist_1_link_75 = wrist_1_link_9 * 0.017784735;
+    const double wrist_1_link_76 = wrist_1_link_12 * (-0.017784735);
     const double wrist_1_link_77 = wrist_1_link_73 * wrist_1_link_75;
     const double wrist_1_link_78 = wrist_1_link_72 * wrist_1_link_76;
     const double wrist_1_link_79 = wrist_1_link_78 - wrist_1_link_77;
@@ -17956,7 +17956,7 @@ void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[n
     const double wrist_2_link_51 = wrist_1_link_113 + wrist_2_link_50;
 
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; its joint's Jacobian columns
-    const double wrist_3_link_18 = (-0.0171364731454) * wrist_2_link_9;
+    const double wrist_3_link_18 = wrist_2_link_9 * (-0.0171364731454);
     const double wrist_3_link_19 = 0.0171364731454 * wrist_2_link_12;
     const double wrist_3_link_20 = 0.0171364731454 * wrist_2_link_13;
     const double wrist_3_link_21 = v[5] * wrist_3_link_18;

@@ -74,15 +74,15 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float upper_arm_link_23 = upper_arm_link_14 - upper_arm_link_10;
     const float upper_arm_link_24 = upper_arm_link_11 + upper_arm_link_18;
     const float upper_arm_link_25 = upper_arm_link_21 - upper_arm_link_12;
-    const float upper_arm_link_26 = (-2.35004f) * upper_arm_link_7;
-    const float upper_arm_link_27 = (-0.8849019f) * upper_arm_link_4;
+    const float upper_arm_link_26 = upper_arm_link_7 * (-2.35004f);
+    const float upper_arm_link_27 = upper_arm_link_4 * (-0.8849019f);
     const float upper_arm_link_28 = 0.8849019f * v[1];
     const float upper_arm_link_29 = 0.0151074f * upper_arm_link_5;
     const float upper_arm_link_30 = upper_arm_link_26 + upper_arm_link_28;
     const float upper_arm_link_31 = 2.35004f * v[1];
-    const float upper_arm_link_32 = (-2.35004f) * upper_arm_link_4;
-    const float upper_arm_link_33 = (-8.393f) * upper_arm_link_7;
-    const float upper_arm_link_34 = (-8.393f) * upper_arm_link_8;
+    const float upper_arm_link_32 = upper_arm_link_4 * (-2.35004f);
+    const float upper_arm_link_33 = upper_arm_link_7 * (-8.393f);
+    const float upper_arm_link_34 = upper_arm_link_8 * (-8.393f);
     const float upper_arm_link_35 = upper_arm_link_31 + upper_arm_link_33;
     const float upper_arm_link_36 = upper_arm_link_8 * upper_arm_link_32;
     const float upper_arm_link_37 = upper_arm_link_7 * upper_arm_link_34;
@@ -108,7 +108,7 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float upper_arm_link_57 = upper_arm_link_4 * upper_arm_link_32;
     const float upper_arm_link_58 = upper_arm_link_57 - upper_arm_link_56;
     const float upper_arm_link_59 = 2.35004f * upper_arm_link_24;
-    const float upper_arm_link_60 = (-0.8849019f) * upper_arm_link_22;
+    const float upper_arm_link_60 = upper_arm_link_22 * (-0.8849019f);
     const float upper_arm_link_61 = 0.8849019f * a[1];
     const float upper_arm_link_62 = 0.0151074f * upper_arm_link_23;
     const float upper_arm_link_63 = upper_arm_link_59 + upper_arm_link_61;
@@ -132,8 +132,8 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float forearm_link_6 = 0.425f * v[1];
     const float forearm_link_7 = (-0.1197f) * upper_arm_link_5;
     const float forearm_link_8 = forearm_link_7 - forearm_link_6;
-    const float forearm_link_9 = (-0.425f) * upper_arm_link_4;
-    const float forearm_link_10 = 0.1197f * upper_arm_link_4;
+    const float forearm_link_9 = upper_arm_link_4 * (-0.425f);
+    const float forearm_link_10 = upper_arm_link_4 * 0.1197f;
     const float forearm_link_11 = upper_arm_link_7 + forearm_link_8;
     const float forearm_link_12 = forearm_link_10 - upper_arm_link_8;
     const float forearm_link_13 = trig->sin_q[2] * forearm_link_12;
@@ -156,8 +156,8 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float forearm_link_30 = 0.425f * a[1];
     const float forearm_link_31 = (-0.1197f) * upper_arm_link_23;
     const float forearm_link_32 = forearm_link_31 - forearm_link_30;
-    const float forearm_link_33 = (-0.425f) * upper_arm_link_22;
-    const float forearm_link_34 = 0.1197f * upper_arm_link_22;
+    const float forearm_link_33 = upper_arm_link_22 * (-0.425f);
+    const float forearm_link_34 = upper_arm_link_22 * 0.1197f;
     const float forearm_link_35 = upper_arm_link_24 - forearm_link_32;
     const float forearm_link_36 = upper_arm_link_25 + forearm_link_34;
     const float forearm_link_37 = trig->sin_q[2] * forearm_link_36;
@@ -171,17 +171,17 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float forearm_link_45 = forearm_link_29 - forearm_link_21;
     const float forearm_link_46 = forearm_link_39 - forearm_link_22;
     const float forearm_link_47 = forearm_link_42 - forearm_link_23;
-    const float forearm_link_48 = (-0.56875f) * forearm_link_9;
-    const float forearm_link_49 = (-0.56875f) * forearm_link_15;
-    const float forearm_link_50 = (-0.19163081f) * forearm_link_2;
+    const float forearm_link_48 = forearm_link_9 * (-0.56875f);
+    const float forearm_link_49 = forearm_link_15 * (-0.56875f);
+    const float forearm_link_50 = forearm_link_2 * (-0.19163081f);
     const float forearm_link_51 = 0.19163081f * forearm_link_19;
     const float forearm_link_52 = 0.004095f * forearm_link_5;
     const float forearm_link_53 = forearm_link_50 - forearm_link_48;
     const float forearm_link_54 = forearm_link_49 + forearm_link_51;
     const float forearm_link_55 = 0.56875f * forearm_link_19;
-    const float forearm_link_56 = (-0.56875f) * forearm_link_2;
-    const float forearm_link_57 = (-2.275f) * forearm_link_15;
-    const float forearm_link_58 = (-2.275f) * forearm_link_9;
+    const float forearm_link_56 = forearm_link_2 * (-0.56875f);
+    const float forearm_link_57 = forearm_link_15 * (-2.275f);
+    const float forearm_link_58 = forearm_link_9 * (-2.275f);
     const float forearm_link_59 = 2.275f * forearm_link_18;
     const float forearm_link_60 = forearm_link_55 + forearm_link_57;
     const float forearm_link_61 = forearm_link_58 - forearm_link_56;
@@ -215,17 +215,17 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float forearm_link_89 = forearm_link_19 * forearm_link_60;
     const float forearm_link_90 = forearm_link_2 * forearm_link_61;
     const float forearm_link_91 = forearm_link_89 + forearm_link_90;
-    const float forearm_link_92 = (-0.56875f) * forearm_link_33;
+    const float forearm_link_92 = forearm_link_33 * (-0.56875f);
     const float forearm_link_93 = 0.56875f * forearm_link_46;
-    const float forearm_link_94 = (-0.19163081f) * forearm_link_44;
+    const float forearm_link_94 = forearm_link_44 * (-0.19163081f);
     const float forearm_link_95 = 0.19163081f * forearm_link_43;
     const float forearm_link_96 = 0.004095f * forearm_link_45;
     const float forearm_link_97 = forearm_link_94 - forearm_link_92;
     const float forearm_link_98 = forearm_link_93 + forearm_link_95;
     const float forearm_link_99 = 0.56875f * forearm_link_43;
-    const float forearm_link_100 = (-0.56875f) * forearm_link_44;
+    const float forearm_link_100 = forearm_link_44 * (-0.56875f);
     const float forearm_link_101 = 2.275f * forearm_link_46;
-    const float forearm_link_102 = (-2.275f) * forearm_link_33;
+    const float forearm_link_102 = forearm_link_33 * (-2.275f);
     const float forearm_link_103 = 2.275f * forearm_link_47;
     const float forearm_link_104 = forearm_link_99 + forearm_link_101;
     const float forearm_link_105 = forearm_link_102 - forearm_link_100;
@@ -248,7 +248,7 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float wrist_1_link_8 = forearm_link_2 * wrist_1_link_3;
     const float wrist_1_link_9 = wrist_1_link_7 - wrist_1_link_8;
     const float wrist_1_link_10 = 0.39225f * forearm_link_19;
-    const float wrist_1_link_11 = (-0.39225f) * forearm_link_2;
+    const float wrist_1_link_11 = forearm_link_2 * (-0.39225f);
     const float wrist_1_link_12 = wrist_1_link_10 - forearm_link_15;
     const float wrist_1_link_13 = forearm_link_9 + wrist_1_link_11;
     const float wrist_1_link_14 = forearm_link_18 * wrist_1_link_3;
@@ -269,7 +269,7 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float wrist_1_link_29 = forearm_link_44 * wrist_1_link_3;
     const float wrist_1_link_30 = wrist_1_link_28 - wrist_1_link_29;
     const float wrist_1_link_31 = 0.39225f * forearm_link_43;
-    const float wrist_1_link_32 = (-0.39225f) * forearm_link_44;
+    const float wrist_1_link_32 = forearm_link_44 * (-0.39225f);
     const float wrist_1_link_33 = forearm_link_46 + wrist_1_link_31;
     const float wrist_1_link_34 = forearm_link_33 + wrist_1_link_32;
     const float wrist_1_link_35 = forearm_link_47 * wrist_1_link_3;
@@ -283,11 +283,11 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float wrist_1_link_43 = wrist_1_link_30 - wrist_1_link_22;
     const float wrist_1_link_44 = wrist_1_link_37 - wrist_1_link_23;
     const float wrist_1_link_45 = wrist_1_link_24 + wrist_1_link_40;
-    const float wrist_1_link_46 = (-0.11117276f) * wrist_1_link_6;
+    const float wrist_1_link_46 = wrist_1_link_6 * (-0.11117276f);
     const float wrist_1_link_47 = 0.11117276f * wrist_1_link_20;
     const float wrist_1_link_48 = 0.21942f * wrist_1_link_9;
     const float wrist_1_link_49 = 1.219f * wrist_1_link_16;
-    const float wrist_1_link_50 = (-1.219f) * wrist_1_link_13;
+    const float wrist_1_link_50 = wrist_1_link_13 * (-1.219f);
     const float wrist_1_link_51 = 1.219f * wrist_1_link_19;
     const float wrist_1_link_52 = wrist_1_link_19 * wrist_1_link_50;
     const float wrist_1_link_53 = wrist_1_link_13 * wrist_1_link_51;
@@ -319,11 +319,11 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float wrist_1_link_79 = wrist_1_link_20 * wrist_1_link_49;
     const float wrist_1_link_80 = wrist_1_link_6 * wrist_1_link_50;
     const float wrist_1_link_81 = wrist_1_link_79 + wrist_1_link_80;
-    const float wrist_1_link_82 = (-0.11117276f) * wrist_1_link_42;
+    const float wrist_1_link_82 = wrist_1_link_42 * (-0.11117276f);
     const float wrist_1_link_83 = 0.11117276f * wrist_1_link_41;
     const float wrist_1_link_84 = 0.21942f * wrist_1_link_43;
     const float wrist_1_link_85 = 1.219f * wrist_1_link_44;
-    const float wrist_1_link_86 = (-1.219f) * wrist_1_link_34;
+    const float wrist_1_link_86 = wrist_1_link_34 * (-1.219f);
     const float wrist_1_link_87 = 1.219f * wrist_1_link_45;
     const float wrist_1_link_88 = wrist_1_link_70 + wrist_1_link_82;
     const float wrist_1_link_89 = wrist_1_link_71 + wrist_1_link_83;
@@ -340,7 +340,7 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float wrist_2_link_4 = wrist_1_link_6 * trig->sin_q[4];
     const float wrist_2_link_5 = wrist_2_link_3 + wrist_2_link_4;
     const float wrist_2_link_6 = 0.093f * wrist_1_link_9;
-    const float wrist_2_link_7 = (-0.093f) * wrist_1_link_6;
+    const float wrist_2_link_7 = wrist_1_link_6 * (-0.093f);
     const float wrist_2_link_8 = wrist_1_link_16 - wrist_2_link_6;
     const float wrist_2_link_9 = wrist_1_link_19 + wrist_2_link_7;
     const float wrist_2_link_10 = wrist_1_link_13 * trig->sin_q[4];
@@ -361,7 +361,7 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float wrist_2_link_25 = wrist_1_link_42 * trig->sin_q[4];
     const float wrist_2_link_26 = wrist_2_link_24 + wrist_2_link_25;
     const float wrist_2_link_27 = 0.093f * wrist_1_link_43;
-    const float wrist_2_link_28 = (-0.093f) * wrist_1_link_42;
+    const float wrist_2_link_28 = wrist_1_link_42 * (-0.093f);
     const float wrist_2_link_29 = wrist_1_link_44 - wrist_2_link_27;
     const float wrist_2_link_30 = wrist_1_link_45 + wrist_2_link_28;
     const float wrist_2_link_31 = wrist_1_link_34 * trig->sin_q[4];
@@ -471,7 +471,7 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float wrist_3_link_43 = 0.017136473f * wrist_3_link_16;
     const float wrist_3_link_44 = 0.033822f * wrist_3_link_5;
     const float wrist_3_link_45 = 0.1879f * wrist_3_link_12;
-    const float wrist_3_link_46 = (-0.1879f) * wrist_3_link_9;
+    const float wrist_3_link_46 = wrist_3_link_9 * (-0.1879f);
     const float wrist_3_link_47 = 0.1879f * wrist_3_link_15;
     const float wrist_3_link_48 = wrist_3_link_15 * wrist_3_link_46;
     const float wrist_3_link_49 = wrist_3_link_9 * wrist_3_link_47;
@@ -507,7 +507,7 @@ void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float
     const float wrist_3_link_79 = 0.017136473f * wrist_3_link_37;
     const float wrist_3_link_80 = 0.033822f * wrist_3_link_39;
     const float wrist_3_link_81 = 0.1879f * wrist_3_link_40;
-    const float wrist_3_link_82 = (-0.1879f) * wrist_3_link_30;
+    const float wrist_3_link_82 = wrist_3_link_30 * (-0.1879f);
     const float wrist_3_link_83 = 0.1879f * wrist_3_link_41;
     const float wrist_3_link_84 = wrist_3_link_66 + wrist_3_link_78;
     const float wrist_3_link_85 = wrist_3_link_67 + wrist_3_link_79;
@@ -665,7 +665,7 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; composite inertia
     const float wrist_3_link_0 = 0.017136473f * trig->cos_q[5];
     const float wrist_3_link_1 = 0.033822f * trig->sin_q[5];
-    const float wrist_3_link_2 = (-0.017136473f) * trig->sin_q[5];
+    const float wrist_3_link_2 = trig->sin_q[5] * (-0.017136473f);
     const float wrist_3_link_3 = 0.033822f * trig->cos_q[5];
     const float wrist_3_link_4 = trig->sin_q[5] * wrist_3_link_1;
     const float wrist_3_link_5 = trig->cos_q[5] * wrist_3_link_0;
@@ -676,14 +676,14 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
     const float wrist_3_link_10 = trig->sin_q[5] * wrist_3_link_3;
     const float wrist_3_link_11 = trig->cos_q[5] * wrist_3_link_2;
     const float wrist_3_link_12 = wrist_3_link_10 + wrist_3_link_11;
-    const float wrist_3_link_13 = 0.0016833252f + wrist_3_link_6;
+    const float wrist_3_link_13 = wrist_3_link_6 + 0.0016833252f;
     const float wrist_3_link_14 = wrist_3_link_9 - 0.0016833252f;
     const float wrist_3_link_15 = 0.0016833252f + wrist_3_link_14;
     const float wrist_3_link_16 = 0.11117276f + wrist_3_link_13;
     const float wrist_3_link_17 = 0.21942f + wrist_3_link_15;
 
     // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; a descendant's column of M carried up
-    const float wrist_1_link_4 = (-0.017136473f) * trig->sin_q[4];
+    const float wrist_1_link_4 = trig->sin_q[4] * (-0.017136473f);
     const float wrist_1_link_5 = 0.017136473f * trig->cos_q[4];
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
@@ -706,10 +706,10 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
 
     // ---- link 'wrist_2_link' (4) <- 'wrist_1_link' (3); joint 'wrist_2_joint': revolute +z; composite inertia
     const float wrist_2_link_0 = trig->cos_q[4] * wrist_3_link_16;
-    const float wrist_2_link_1 = (-0.12999256f) * trig->sin_q[4];
+    const float wrist_2_link_1 = trig->sin_q[4] * (-0.12999256f);
     const float wrist_2_link_2 = trig->cos_q[4] * wrist_3_link_12;
     const float wrist_2_link_3 = trig->sin_q[4] * wrist_3_link_16;
-    const float wrist_2_link_4 = 0.12999256f * trig->cos_q[4];
+    const float wrist_2_link_4 = trig->cos_q[4] * 0.12999256f;
     const float wrist_2_link_5 = trig->sin_q[4] * wrist_3_link_12;
     const float wrist_2_link_6 = trig->sin_q[4] * wrist_2_link_1;
     const float wrist_2_link_7 = trig->cos_q[4] * wrist_2_link_0;
@@ -720,10 +720,10 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
     const float wrist_2_link_12 = trig->sin_q[4] * wrist_2_link_4;
     const float wrist_2_link_13 = trig->cos_q[4] * wrist_2_link_3;
     const float wrist_2_link_14 = wrist_2_link_13 - wrist_2_link_12;
-    const float wrist_2_link_15 = 0.012168279f + wrist_2_link_8;
+    const float wrist_2_link_15 = wrist_2_link_8 + 0.012168279f;
     const float wrist_2_link_16 = wrist_2_link_11 - 0.012168279f;
     const float wrist_2_link_17 = 0.012168279f + wrist_2_link_16;
-    const float wrist_2_link_18 = 0.012168279f + wrist_3_link_17;
+    const float wrist_2_link_18 = wrist_3_link_17 + 0.012168279f;
     const float wrist_2_link_19 = wrist_2_link_5 - 0.0016539805f;
     const float wrist_2_link_20 = 0.11117276f + wrist_2_link_15;
     const float wrist_2_link_21 = 0.11117276f + wrist_2_link_17;
@@ -751,9 +751,9 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
     const float shoulder_link_6 = shoulder_link_4 - shoulder_link_5;
 
     // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; composite inertia
-    const float wrist_1_link_6 = 0.017784735f * wrist_1_link_3;
-    const float wrist_1_link_7 = 0.017784735f * wrist_1_link_1;
-    const float wrist_1_link_8 = 1.0300092f + wrist_1_link_7;
+    const float wrist_1_link_6 = wrist_1_link_3 * 0.017784735f;
+    const float wrist_1_link_7 = wrist_1_link_1 * 0.017784735f;
+    const float wrist_1_link_8 = wrist_1_link_7 + 1.0300092f;
     const float wrist_1_link_9 = wrist_1_link_1 * wrist_2_link_20;
     const float wrist_1_link_10 = forearm_link_6 + wrist_1_link_9;
     const float wrist_1_link_11 = wrist_1_link_3 * wrist_2_link_19;
@@ -794,7 +794,7 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
     const float wrist_1_link_46 = 0.004095f + wrist_1_link_39;
 
     // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
-    const float forearm_link_8 = (-0.017784735f) * wrist_1_link_3;
+    const float forearm_link_8 = wrist_1_link_3 * (-0.017784735f);
     const float forearm_link_9 = wrist_2_link_21 + wrist_1_link_33;
 
     // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
@@ -834,7 +834,7 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
     const float forearm_link_13 = trig->cos_q[2] * wrist_1_link_43;
     const float forearm_link_14 = trig->sin_q[2] * wrist_1_link_6;
     const float forearm_link_15 = forearm_link_13 - forearm_link_14;
-    const float forearm_link_16 = 2.0828824f + forearm_link_15;
+    const float forearm_link_16 = forearm_link_15 + 2.0828824f;
     const float forearm_link_17 = trig->sin_q[2] * wrist_1_link_41;
     const float forearm_link_18 = trig->cos_q[2] * wrist_1_link_44;
     const float forearm_link_19 = forearm_link_17 + forearm_link_18;
@@ -859,9 +859,9 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
     const float forearm_link_38 = trig->cos_q[2] * forearm_link_26;
     const float forearm_link_39 = forearm_link_37 + forearm_link_38;
     const float forearm_link_40 = 0.425f * forearm_link_16;
-    const float forearm_link_41 = 0.054558784f + forearm_link_40;
+    const float forearm_link_41 = forearm_link_40 + 0.054558784f;
     const float forearm_link_42 = 0.425f * forearm_link_15;
-    const float forearm_link_43 = (-0.015661752f) + forearm_link_42;
+    const float forearm_link_43 = forearm_link_42 + (-0.015661752f);
     const float forearm_link_44 = forearm_link_41 + forearm_link_43;
     const float forearm_link_45 = forearm_link_33 + forearm_link_44;
     const float forearm_link_46 = wrist_1_link_45 - (-0.015661752f);
@@ -883,7 +883,7 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
     const float forearm_link_62 = 0.0151074f + forearm_link_51;
 
     // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
-    const float upper_arm_link_34 = 0.1197f * forearm_link_12;
+    const float upper_arm_link_34 = forearm_link_12 * 0.1197f;
     const float upper_arm_link_35 = (-0.1197f) * forearm_link_15;
     const float upper_arm_link_36 = forearm_link_21 + upper_arm_link_34;
     const float upper_arm_link_37 = wrist_1_link_45 + forearm_link_42;
@@ -914,7 +914,7 @@ void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5
     const float upper_arm_link_50 = upper_arm_link_1 * upper_arm_link_49;
     const float upper_arm_link_51 = upper_arm_link_3 * upper_arm_link_44;
     const float upper_arm_link_52 = upper_arm_link_50 - upper_arm_link_51;
-    const float upper_arm_link_53 = 0.121502094f + upper_arm_link_52;
+    const float upper_arm_link_53 = upper_arm_link_52 + 0.121502094f;
     const float upper_arm_link_54 = 0.13585f * upper_arm_link_40;
     const float upper_arm_link_55 = upper_arm_link_47 - upper_arm_link_54;
     const float upper_arm_link_56 = 0.00666f + upper_arm_link_53;
@@ -987,15 +987,15 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float upper_arm_link_10 = v[1] * upper_arm_link_4;
     const float upper_arm_link_11 = v[1] * upper_arm_link_8;
     const float upper_arm_link_12 = v[1] * upper_arm_link_7;
-    const float upper_arm_link_13 = (-2.35004f) * upper_arm_link_7;
-    const float upper_arm_link_14 = (-0.8849019f) * upper_arm_link_4;
+    const float upper_arm_link_13 = upper_arm_link_7 * (-2.35004f);
+    const float upper_arm_link_14 = upper_arm_link_4 * (-0.8849019f);
     const float upper_arm_link_15 = 0.8849019f * v[1];
     const float upper_arm_link_16 = 0.0151074f * upper_arm_link_5;
     const float upper_arm_link_17 = upper_arm_link_13 + upper_arm_link_15;
     const float upper_arm_link_18 = 2.35004f * v[1];
-    const float upper_arm_link_19 = (-2.35004f) * upper_arm_link_4;
-    const float upper_arm_link_20 = (-8.393f) * upper_arm_link_7;
-    const float upper_arm_link_21 = (-8.393f) * upper_arm_link_8;
+    const float upper_arm_link_19 = upper_arm_link_4 * (-2.35004f);
+    const float upper_arm_link_20 = upper_arm_link_7 * (-8.393f);
+    const float upper_arm_link_21 = upper_arm_link_8 * (-8.393f);
     const float upper_arm_link_22 = upper_arm_link_18 + upper_arm_link_20;
     const float upper_arm_link_23 = upper_arm_link_8 * upper_arm_link_19;
     const float upper_arm_link_24 = upper_arm_link_7 * upper_arm_link_21;
@@ -1031,8 +1031,8 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float forearm_link_6 = 0.425f * v[1];
     const float forearm_link_7 = (-0.1197f) * upper_arm_link_5;
     const float forearm_link_8 = forearm_link_7 - forearm_link_6;
-    const float forearm_link_9 = (-0.425f) * upper_arm_link_4;
-    const float forearm_link_10 = 0.1197f * upper_arm_link_4;
+    const float forearm_link_9 = upper_arm_link_4 * (-0.425f);
+    const float forearm_link_10 = upper_arm_link_4 * 0.1197f;
     const float forearm_link_11 = upper_arm_link_7 + forearm_link_8;
     const float forearm_link_12 = forearm_link_10 - upper_arm_link_8;
     const float forearm_link_13 = trig->sin_q[2] * forearm_link_12;
@@ -1046,17 +1046,17 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float forearm_link_21 = v[2] * forearm_link_2;
     const float forearm_link_22 = v[2] * forearm_link_18;
     const float forearm_link_23 = v[2] * forearm_link_15;
-    const float forearm_link_24 = (-0.56875f) * forearm_link_9;
-    const float forearm_link_25 = (-0.56875f) * forearm_link_15;
-    const float forearm_link_26 = (-0.19163081f) * forearm_link_2;
+    const float forearm_link_24 = forearm_link_9 * (-0.56875f);
+    const float forearm_link_25 = forearm_link_15 * (-0.56875f);
+    const float forearm_link_26 = forearm_link_2 * (-0.19163081f);
     const float forearm_link_27 = 0.19163081f * forearm_link_19;
     const float forearm_link_28 = 0.004095f * forearm_link_5;
     const float forearm_link_29 = forearm_link_26 - forearm_link_24;
     const float forearm_link_30 = forearm_link_25 + forearm_link_27;
     const float forearm_link_31 = 0.56875f * forearm_link_19;
-    const float forearm_link_32 = (-0.56875f) * forearm_link_2;
-    const float forearm_link_33 = (-2.275f) * forearm_link_15;
-    const float forearm_link_34 = (-2.275f) * forearm_link_9;
+    const float forearm_link_32 = forearm_link_2 * (-0.56875f);
+    const float forearm_link_33 = forearm_link_15 * (-2.275f);
+    const float forearm_link_34 = forearm_link_9 * (-2.275f);
     const float forearm_link_35 = 2.275f * forearm_link_18;
     const float forearm_link_36 = forearm_link_31 + forearm_link_33;
     const float forearm_link_37 = forearm_link_34 - forearm_link_32;
@@ -1103,7 +1103,7 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_1_link_8 = forearm_link_2 * wrist_1_link_3;
     const float wrist_1_link_9 = wrist_1_link_7 - wrist_1_link_8;
     const float wrist_1_link_10 = 0.39225f * forearm_link_19;
-    const float wrist_1_link_11 = (-0.39225f) * forearm_link_2;
+    const float wrist_1_link_11 = forearm_link_2 * (-0.39225f);
     const float wrist_1_link_12 = wrist_1_link_10 - forearm_link_15;
     const float wrist_1_link_13 = forearm_link_9 + wrist_1_link_11;
     const float wrist_1_link_14 = forearm_link_18 * wrist_1_link_3;
@@ -1117,11 +1117,11 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_1_link_22 = v[3] * wrist_1_link_6;
     const float wrist_1_link_23 = v[3] * wrist_1_link_19;
     const float wrist_1_link_24 = v[3] * wrist_1_link_16;
-    const float wrist_1_link_25 = (-0.11117276f) * wrist_1_link_6;
+    const float wrist_1_link_25 = wrist_1_link_6 * (-0.11117276f);
     const float wrist_1_link_26 = 0.11117276f * wrist_1_link_20;
     const float wrist_1_link_27 = 0.21942f * wrist_1_link_9;
     const float wrist_1_link_28 = 1.219f * wrist_1_link_16;
-    const float wrist_1_link_29 = (-1.219f) * wrist_1_link_13;
+    const float wrist_1_link_29 = wrist_1_link_13 * (-1.219f);
     const float wrist_1_link_30 = 1.219f * wrist_1_link_19;
     const float wrist_1_link_31 = wrist_1_link_19 * wrist_1_link_29;
     const float wrist_1_link_32 = wrist_1_link_13 * wrist_1_link_30;
@@ -1162,7 +1162,7 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_2_link_4 = wrist_1_link_6 * trig->sin_q[4];
     const float wrist_2_link_5 = wrist_2_link_3 + wrist_2_link_4;
     const float wrist_2_link_6 = 0.093f * wrist_1_link_9;
-    const float wrist_2_link_7 = (-0.093f) * wrist_1_link_6;
+    const float wrist_2_link_7 = wrist_1_link_6 * (-0.093f);
     const float wrist_2_link_8 = wrist_1_link_16 - wrist_2_link_6;
     const float wrist_2_link_9 = wrist_1_link_19 + wrist_2_link_7;
     const float wrist_2_link_10 = wrist_1_link_13 * trig->sin_q[4];
@@ -1239,7 +1239,7 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_3_link_22 = 0.017136473f * wrist_3_link_16;
     const float wrist_3_link_23 = 0.033822f * wrist_3_link_5;
     const float wrist_3_link_24 = 0.1879f * wrist_3_link_12;
-    const float wrist_3_link_25 = (-0.1879f) * wrist_3_link_9;
+    const float wrist_3_link_25 = wrist_3_link_9 * (-0.1879f);
     const float wrist_3_link_26 = 0.1879f * wrist_3_link_15;
     const float wrist_3_link_27 = wrist_3_link_15 * wrist_3_link_25;
     const float wrist_3_link_28 = wrist_3_link_9 * wrist_3_link_26;
@@ -1274,9 +1274,9 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
 
     // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; articulated inertia pass
     const float wrist_3_link_57 = tau[5] - wrist_3_link_46;
-    const float wrist_3_link_58 = (-0.017136473f) * wrist_3_link_17;
+    const float wrist_3_link_58 = wrist_3_link_17 * (-0.017136473f);
     const float wrist_3_link_59 = 0.033822f * wrist_3_link_18;
-    const float wrist_3_link_60 = (-0.1879f) * wrist_3_link_19;
+    const float wrist_3_link_60 = wrist_3_link_19 * (-0.1879f);
     const float wrist_3_link_61 = 0.1879f * wrist_3_link_20;
     const float wrist_3_link_62 = wrist_3_link_45 + wrist_3_link_58;
     const float wrist_3_link_63 = wrist_3_link_47 + wrist_3_link_59;
@@ -1285,7 +1285,7 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_3_link_66 = wrist_3_link_46 + wrist_3_link_57;
     const float wrist_3_link_67 = 0.017136473f * trig->cos_q[5];
     const float wrist_3_link_68 = 0.033822f * trig->sin_q[5];
-    const float wrist_3_link_69 = (-0.017136473f) * trig->sin_q[5];
+    const float wrist_3_link_69 = trig->sin_q[5] * (-0.017136473f);
     const float wrist_3_link_70 = 0.033822f * trig->cos_q[5];
     const float wrist_3_link_71 = trig->sin_q[5] * wrist_3_link_68;
     const float wrist_3_link_72 = trig->cos_q[5] * wrist_3_link_67;
@@ -1298,7 +1298,7 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_3_link_79 = wrist_3_link_77 + wrist_3_link_78;
     const float wrist_3_link_80 = 0.1879f * trig->cos_q[5];
     const float wrist_3_link_81 = 0.1879f * trig->sin_q[5];
-    const float wrist_3_link_82 = (-0.1879f) * trig->sin_q[5];
+    const float wrist_3_link_82 = trig->sin_q[5] * (-0.1879f);
     const float wrist_3_link_83 = trig->sin_q[5] * wrist_3_link_81;
     const float wrist_3_link_84 = trig->cos_q[5] * wrist_3_link_80;
     const float wrist_3_link_85 = wrist_3_link_83 + wrist_3_link_84;
@@ -1309,7 +1309,7 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_3_link_90 = wrist_3_link_88 + wrist_3_link_89;
     const float wrist_3_link_91 = 0.09465f * wrist_3_link_85;
     const float wrist_3_link_92 = 0.09465f * wrist_3_link_90;
-    const float wrist_3_link_93 = (-0.09465f) * wrist_3_link_91;
+    const float wrist_3_link_93 = wrist_3_link_91 * (-0.09465f);
     const float wrist_3_link_94 = wrist_3_link_73 - (-0.0016833252f);
     const float wrist_3_link_95 = 0.11117276f + wrist_3_link_94;
     const float wrist_3_link_96 = 0.11117276f - wrist_3_link_93;
@@ -1352,7 +1352,7 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_2_link_66 = wrist_3_link_79 - wrist_2_link_65;
     const float wrist_2_link_67 = wrist_2_link_58 * wrist_2_link_59;
     const float wrist_2_link_68 = wrist_2_link_58 * wrist_2_link_60;
-    const float wrist_2_link_69 = 0.017784735f * wrist_2_link_20;
+    const float wrist_2_link_69 = wrist_2_link_20 * 0.017784735f;
     const float wrist_2_link_70 = wrist_2_link_19 * wrist_3_link_91;
     const float wrist_2_link_71 = wrist_2_link_17 * wrist_2_link_62;
     const float wrist_2_link_72 = wrist_2_link_18 * wrist_3_link_96;
@@ -1360,10 +1360,10 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_2_link_74 = wrist_2_link_69 + wrist_2_link_71;
     const float wrist_2_link_75 = wrist_2_link_70 + wrist_2_link_72;
     const float wrist_2_link_76 = wrist_2_link_19 * wrist_3_link_98;
-    const float wrist_2_link_77 = (-1.4068999f) * wrist_2_link_20;
+    const float wrist_2_link_77 = wrist_2_link_20 * (-1.4068999f);
     const float wrist_2_link_78 = wrist_2_link_19 * wrist_3_link_90;
     const float wrist_2_link_79 = wrist_2_link_18 * wrist_3_link_91;
-    const float wrist_2_link_80 = (-0.017784735f) * wrist_2_link_17;
+    const float wrist_2_link_80 = wrist_2_link_17 * (-0.017784735f);
     const float wrist_2_link_81 = wrist_2_link_18 * wrist_3_link_92;
     const float wrist_2_link_82 = wrist_2_link_76 + wrist_2_link_79;
     const float wrist_2_link_83 = wrist_2_link_77 + wrist_2_link_80;
@@ -1391,8 +1391,8 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_2_link_105 = trig->sin_q[4] * wrist_2_link_97;
     const float wrist_2_link_106 = trig->cos_q[4] * wrist_2_link_96;
     const float wrist_2_link_107 = wrist_2_link_106 - wrist_2_link_105;
-    const float wrist_2_link_108 = 0.017784735f * trig->sin_q[4];
-    const float wrist_2_link_109 = (-0.017784735f) * trig->cos_q[4];
+    const float wrist_2_link_108 = trig->sin_q[4] * 0.017784735f;
+    const float wrist_2_link_109 = trig->cos_q[4] * (-0.017784735f);
     const float wrist_2_link_110 = trig->cos_q[4] * wrist_3_link_91;
     const float wrist_2_link_111 = trig->sin_q[4] * wrist_3_link_91;
     const float wrist_2_link_112 = trig->sin_q[4] * wrist_2_link_110;
@@ -1410,10 +1410,10 @@ void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float 
     const float wrist_2_link_124 = wrist_2_link_122 + wrist_2_link_123;
     const float wrist_2_link_125 = trig->cos_q[4] * wrist_3_link_92;
     const float wrist_2_link_126 = trig->cos_q[4] * wrist_3_link_98;
-    const float wrist_2_link_127 = (-1.4068999f) * trig->sin_q[4];
+    const float wrist_2_link_127 = trig->sin_q[4] * (-1.4068999f);
     const float wrist_2_link_128 = trig->cos_q[4] * wrist_3_link_90;
     const float wrist_2_link_129 = trig->sin_q[4] * wrist_3_link_98;
-    const float wrist_2_link_130 = 1.4068999f * trig->cos_q[4];
+    const float wrist_2_link_130 = trig->cos_q[4] * 1.4068999f;
     const float wrist_2_link_131 = trig->sin_q[4] * wrist_3_link_90;
     const float wrist_2_link_132 = trig->sin_q[4] * wrist_2_link_127;
     const float wrist_2_link_133 = trig->cos_q[4] * wrist_2_link_126;
