@@ -324,50 +324,52 @@ long statements_run(const EmittedCode& code, const std::string& algorithm) {
   return run;
 }
 
-TEST(SharedStructure, RunsEveryOperationOfTheUnrolledCodeOnce) {
+/// Calls check(robot, program, what) for solo12's RNEA, CRBA and ABA, fixed and floating: four
+/// legs of the same build, whose sections share code.
+template <class Check>
+void for_each_solo12_function(Check check) {
   for (const bool floating : {false, true}) {
     LoadOptions load;
     load.floating_base = floating;
     const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", load);
-    for (const Algorithm a : {"rnea", "crba", "aba"}) {
-      const Program<double> program = trace<double>(a, robot.model);
-      const EmittedCode unrolled = emit_code(program, robot.model, Structure::Unrolled);
-      const EmittedCode shared = emit_code(program, robot.model, Structure::Shared);
-      const OpCounts ops = count_ops(program);
-      const std::string what = a + (floating ? " floating" : "");
-      EXPECT_TRUE(unrolled.helpers.empty()) << what;
-      EXPECT_EQ(unrolled.shared_sections, 0) << what;
-      EXPECT_EQ(statements_run(unrolled, a), ops.total() - ops.sin - ops.cos) << what;
-      // four legs of the same build: their sections share code
-      EXPECT_GT(shared.shared_functions, 0) << what;
-      EXPECT_GE(shared.shared_sections, 2 * shared.shared_functions) << what;
-      EXPECT_EQ(statements_run(shared, a), ops.total() - ops.sin - ops.cos) << what;
-      EXPECT_LT(shared.body.size() + shared.helpers.size(), unrolled.body.size()) << what;
-    }
+    for (const Algorithm a : {"rnea", "crba", "aba"})
+      check(robot, trace<double>(a, robot.model), a + (floating ? " floating" : ""));
   }
+}
+
+TEST(SharedStructure, RunsEveryOperationOfTheUnrolledCodeOnce) {
+  for_each_solo12_function([](const Robot& robot, const Program<double>& program,
+                               const std::string& what) {
+    const std::string& a = program.algorithm;
+    const EmittedCode unrolled = emit_code(program, robot.model, Structure::Unrolled);
+    const EmittedCode shared = emit_code(program, robot.model, Structure::Shared);
+    const OpCounts ops = count_ops(program);
+    EXPECT_TRUE(unrolled.helpers.empty()) << what;
+    EXPECT_EQ(unrolled.shared_sections, 0) << what;
+    EXPECT_EQ(statements_run(unrolled, a), ops.total() - ops.sin - ops.cos) << what;
+    // four legs of the same build: their sections share code
+    EXPECT_GT(shared.shared_functions, 0) << what;
+    EXPECT_GE(shared.shared_sections, 2 * shared.shared_functions) << what;
+    EXPECT_EQ(statements_run(shared, a), ops.total() - ops.sin - ops.cos) << what;
+    EXPECT_LT(shared.body.size() + shared.helpers.size(), unrolled.body.size()) << what;
+  });
 }
 
 // Auto: code that fits the instruction cache stays in place; bigger code is shared
 TEST(SharedStructure, AutoSharesOnlyBigFunctions) {
   int big_functions = 0, small_functions = 0;
-  for (const bool floating : {false, true}) {
-    LoadOptions load;
-    load.floating_base = floating;
-    const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", load);
-    for (const Algorithm a : {"rnea", "crba", "aba"}) {
-      const Program<double> program = trace<double>(a, robot.model);
-      const std::string what = a + (floating ? " floating" : "");
-      const OpCounts ops = count_ops(program);  // sin and cos come from joint_trig
-      const bool big = ops.total() - ops.sin - ops.cos >= min_shared_function_operations;
-      const EmittedCode automatic = emit_code(program, robot.model, Structure::Auto);
-      const EmittedCode chosen =
-          emit_code(program, robot.model, big ? Structure::Shared : Structure::Unrolled);
-      EXPECT_EQ(automatic.body, chosen.body) << what;
-      EXPECT_EQ(automatic.helpers, chosen.helpers) << what;
-      EXPECT_EQ(automatic.shared_functions > 0, big) << what;
-      ++(big ? big_functions : small_functions);
-    }
-  }
+  for_each_solo12_function([&](const Robot& robot, const Program<double>& program,
+                                const std::string& what) {
+    const OpCounts ops = count_ops(program);  // sin and cos come from joint_trig
+    const bool big = ops.total() - ops.sin - ops.cos >= min_shared_function_operations;
+    const EmittedCode automatic = emit_code(program, robot.model, Structure::Auto);
+    const EmittedCode chosen =
+        emit_code(program, robot.model, big ? Structure::Shared : Structure::Unrolled);
+    EXPECT_EQ(automatic.body, chosen.body) << what;
+    EXPECT_EQ(automatic.helpers, chosen.helpers) << what;
+    EXPECT_EQ(automatic.shared_functions > 0, big) << what;
+    ++(big ? big_functions : small_functions);
+  });
   EXPECT_GT(big_functions, 0);
   EXPECT_GT(small_functions, 0);
 }
