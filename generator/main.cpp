@@ -236,11 +236,13 @@ struct CodeFlags {
         ->check(CLI::IsMember({"c++", "c"}))
         ->capture_default_str();
     app.add_option("--structure", structure,
-                   "shared: sections of links whose code differs only in constants share one "
-                   "function over a table of them (smaller code, the same operations and bits); "
-                   "unrolled: every link's code in place; auto: on the host, shared in functions "
-                   "of 1800 operations or more and unrolled below (where the code fits the "
-                   "instruction cache), on a Cortex-M shared (flash)")
+                   fmt::format("shared: sections of links whose code differs only in "
+                               "constants share one function over a table of them (smaller "
+                               "code, the same operations and bits); unrolled: every link's "
+                               "code in place; auto: on the host, shared in functions of {} "
+                               "operations or more and unrolled below (where the code fits the "
+                               "instruction cache), on a Cortex-M shared (flash)",
+                               min_shared_function_operations))
         ->check(CLI::IsMember({"auto", "unrolled", "shared"}))
         ->capture_default_str();
     if (firmware) {
