@@ -60,7 +60,7 @@ std::string commented(const std::string& unsafe, const char* marker) {
   return out;
 }
 
-/// Warnings when the generated scalar is expected to keep too few digits.
+/// Warnings when the generated scalar may keep too few digits.
 std::vector<std::string> precision_warnings(const numerics::Conditioning& c, bool with_aba,
                                             bool single_precision) {
   std::vector<std::string> warnings;
@@ -70,7 +70,7 @@ std::vector<std::string> precision_warnings(const numerics::Conditioning& c, boo
   const char* scalar = single_precision ? "float" : "double";
   if (with_aba && digits - c.aba_digits_lost() < floor)
     warnings.push_back(fmt::format(
-        "ABA in {} is expected to keep only {:.1f} correct digits (its smallest pivot D/max|IA| "
+        "ABA in {} may keep only {:.1f} correct digits (its smallest pivot D/max|IA| "
         "is {:.2g}, at joint '{}'){}",
         scalar, std::max(0.0, digits - c.aba_digits_lost()), c.pivot_min, c.pivot_joint,
         single_precision ? "; consider --scalar double" : ""));

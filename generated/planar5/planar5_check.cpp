@@ -4,16 +4,16 @@
 // Options: --algorithms rnea,crba,aba --scalar double --lang c++ --structure auto --target host --gravity 0,-9.81,0 --name planar5
 // Operations per call (add counts add and sub):
 //   rnea
-//     generated: add 88, mul 107, div 0, neg 0, sin 4, cos 4
-//     runtime:   add 697, mul 823, div 0, neg 3, sin 4, cos 4
+//     generated: add 63, mul 77, div 0, neg 0, sin 4, cos 4
+//     runtime:   add 577, mul 703, div 0, neg 3, sin 4, cos 4
 //     0 of 9 link sections in 0 shared functions
 //   crba
 //     generated: add 39, mul 31, div 0, neg 1, sin 3, cos 3
 //     runtime:   add 609, mul 784, div 0, neg 0, sin 4, cos 4
 //     0 of 14 link sections in 0 shared functions
 //   aba
-//     generated: add 172, mul 199, div 4, neg 0, sin 4, cos 4
-//     runtime:   add 1708, mul 2016, div 5, neg 18, sin 4, cos 4
+//     generated: add 152, mul 178, div 4, neg 0, sin 4, cos 4
+//     runtime:   add 1630, mul 1947, div 5, neg 18, sin 4, cos 4
 //     0 of 14 link sections in 0 shared functions
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 6.7e+02, max 2.6e+03: a relative change of tau or M can change qdd up to that many times

@@ -4,24 +4,24 @@
 // Options: --algorithms rnea,crba,aba,gravity,nle,minv,rnea_derivatives,aba_derivatives,frame_placements,frame_jacobians,frame_jacobians_local,frame_accelerations,frame_accelerations_local,com,centroidal --scalar double --lang c++ --structure auto --target host --gravity 0,0,-9.81 --name ur5
 // Operations per call (add counts add and sub):
 //   rnea
-//     generated: add 235, mul 325, div 0, neg 0, sin 5, cos 5
-//     runtime:   add 846, mul 1002, div 0, neg 3, sin 6, cos 6
+//     generated: add 174, mul 251, div 0, neg 0, sin 5, cos 5
+//     runtime:   add 702, mul 858, div 0, neg 3, sin 6, cos 6
 //     0 of 11 link sections in 0 shared functions
 //   crba
 //     generated: add 108, mul 122, div 0, neg 1, sin 5, cos 5
 //     runtime:   add 801, mul 1038, div 0, neg 0, sin 6, cos 6
 //     0 of 19 link sections in 0 shared functions
 //   aba
-//     generated: add 543, mul 729, div 5, neg 0, sin 5, cos 5
-//     runtime:   add 2106, mul 2487, div 6, neg 21, sin 6, cos 6
+//     generated: add 508, mul 688, div 5, neg 0, sin 5, cos 5
+//     runtime:   add 2010, mul 2403, div 6, neg 21, sin 6, cos 6
 //     0 of 17 link sections in 0 shared functions
 //   gravity
-//     generated: add 45, mul 76, div 0, neg 1, sin 5, cos 5
-//     runtime:   add 846, mul 1002, div 0, neg 3, sin 6, cos 6
-//     0 of 10 link sections in 0 shared functions
+//     generated: add 13, mul 23, div 0, neg 0, sin 3, cos 3
+//     runtime:   add 167, mul 264, div 0, neg 3, sin 6, cos 6
+//     0 of 6 link sections in 0 shared functions
 //   nle
-//     generated: add 217, mul 309, div 0, neg 0, sin 5, cos 5
-//     runtime:   add 846, mul 1002, div 0, neg 3, sin 6, cos 6
+//     generated: add 156, mul 235, div 0, neg 0, sin 5, cos 5
+//     runtime:   add 702, mul 858, div 0, neg 3, sin 6, cos 6
 //     0 of 10 link sections in 0 shared functions
 //   minv
 //     generated: add 459, mul 673, div 5, neg 15, sin 5, cos 5
@@ -32,8 +32,8 @@
 //     runtime:   add 3488, mul 3834, div 0, neg 3, sin 6, cos 6
 //     0 of 11 link sections in 0 shared functions
 //   aba_derivatives
-//     generated: add 3093, mul 3500, div 5, neg 81, sin 6, cos 6
-//     runtime:   add 8249, mul 9291, div 12, neg 114, sin 18, cos 18
+//     generated: add 3058, mul 3459, div 5, neg 81, sin 6, cos 6
+//     runtime:   add 8153, mul 9207, div 12, neg 114, sin 18, cos 18
 //     0 of 39 link sections in 0 shared functions
 //   frame_placements
 //     generated: add 54, mul 81, div 0, neg 1, sin 6, cos 6
@@ -149,7 +149,7 @@ void aba(const double q[nq], const double v[nv], const double tau[nv], double qd
 void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double tau[nv],
               double qdd[nv]) noexcept;
 
-/// Generalised gravity g(q): rnea at v = 0 and a = 0.
+/// Generalised gravity g(q) = rnea(q, 0, 0), from each subtree's mass and first moment.
 void gravity(const double q[nq], double g[nv]) noexcept;
 void gravity_trig(const double q[nq], const JointTrig& trig, double g[nv]) noexcept;
 

@@ -4,16 +4,16 @@
 // Options: --algorithms rnea,crba,aba --scalar float --lang c --structure auto --target host --gravity 0,0,-9.81 --name ur5
 // Operations per call (add counts add and sub):
 //   rnea
-//     generated: add 235, mul 325, div 0, neg 0, sin 5, cos 5
-//     runtime:   add 846, mul 1002, div 0, neg 3, sin 6, cos 6
+//     generated: add 174, mul 251, div 0, neg 0, sin 5, cos 5
+//     runtime:   add 702, mul 858, div 0, neg 3, sin 6, cos 6
 //     0 of 11 link sections in 0 shared functions
 //   crba
 //     generated: add 108, mul 122, div 0, neg 1, sin 5, cos 5
 //     runtime:   add 801, mul 1038, div 0, neg 0, sin 6, cos 6
 //     0 of 19 link sections in 0 shared functions
 //   aba
-//     generated: add 543, mul 729, div 5, neg 0, sin 5, cos 5
-//     runtime:   add 2106, mul 2487, div 6, neg 21, sin 6, cos 6
+//     generated: add 508, mul 688, div 5, neg 0, sin 5, cos 5
+//     runtime:   add 2010, mul 2403, div 6, neg 21, sin 6, cos 6
 //     0 of 17 link sections in 0 shared functions
 // Conditioning over 16 sampled states (docs/numerics.md):
 //   cond(M) median 1.7e+02, max 2.9e+02: a relative change of tau or M can change qdd up to that many times

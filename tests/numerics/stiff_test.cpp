@@ -221,8 +221,8 @@ class Runtime {
 // robot, state and scalar here, printed as "errors / bound scales").
 
 // RNEA: a sum of inertial and bias torques, with no solve: its error is a few u times the
-// cancellation of that sum, whatever the conditioning (measured at most 16 u times the
-// cancellation, pr2 in float).
+// cancellation of that sum, whatever the conditioning (measured at most 18 u times the
+// cancellation, tapered50_0p9 in double).
 constexpr double rnea_bound_u = 50;
 
 // CRBA: sums of composite inertias, little cancellation in the norm, not growing with n
@@ -237,12 +237,17 @@ constexpr double crba_bound_u = 32;
 constexpr double forward_dynamics_bound_u = 300;
 
 // The conditioning estimate predicts forward dynamics' error: over random states (those it
-// samples) the worst error of ABA and of CRBA + LDL^T is within a factor prediction_factor of
-// 10^-(digits kept) = u 10^aba_digits_lost where that is below 1, and above 1 /
-// prediction_factor where no digit is predicted to remain (measured: 0.05 times the prediction,
-// romeo in double, to 49 times, alternating20 in float; where no digit is predicted, at least 1:
-// none, as predicted).
+// samples) the worst error of ABA and of CRBA + LDL^T is below prediction_factor times
+// 10^-(digits kept) = u 10^aba_digits_lost where that is below 1. Unless the robot is graded
+// (its articulated inertias span graded_inertia_range or more), it is also above 1 /
+// prediction_factor times that, or above 1 / prediction_factor where no digit is predicted to
+// remain (measured: 0.035 to 65 times the prediction, solo12 and alternating20 in float; where
+// no digit is predicted, at least 1: none, as predicted). On the graded tapered chains (spans of
+// 2e14 and more) the errors are 1e-4 to 1e-105 times the prediction: with classical
+// accelerations (rnea.hpp) their bias forces carry no cancelling linear-velocity terms, and the
+// pivots' digits are an upper bound only.
 constexpr double prediction_factor = 200;
+constexpr double graded_inertia_range = 1e10;
 
 // digits_lost (cond(M) or 1 / pivot_min, the larger) bounds every algorithm: over random states
 // each error is below digits_lost_bound_u u 10^digits_lost (measured at most 1.6, the double
@@ -250,8 +255,8 @@ constexpr double prediction_factor = 200;
 constexpr double digits_lost_bound_u = 5;
 
 // ABA is as accurate as CRBA + LDL^T: where both keep a digit, their worst errors are within a
-// factor aba_vs_ldlt_factor of each other (measured: ABA's 0.40 times, baxter in double, to 2.4
-// times, the double pendulum in double).
+// factor aba_vs_ldlt_factor of each other (measured: ABA's 0.44 times, iiwa14 in float, to 3.3
+// times, iiwa14 floating in double).
 constexpr double aba_vs_ldlt_factor = 8;
 
 // ---- the test -----------------------------------------------------------------------------
@@ -360,9 +365,13 @@ class Stiff : public ::testing::TestWithParam<Case> {
         EXPECT_LE(random[a], digits_lost_bound_u * lost) << scalar << " " << algorithm_names[a];
       }
     }
+    const bool graded = cond.inertia_range >= graded_inertia_range;
     for (const Algorithm a : {Aba, CrbaLdlt}) {
       if (predicted < 1) {
         EXPECT_LE(random[a], prediction_factor * predicted) << scalar << " " << algorithm_names[a];
+      }
+      if (graded) continue;
+      if (predicted < 1) {
         EXPECT_GE(random[a], predicted / prediction_factor) << scalar << " " << algorithm_names[a];
       } else {
         EXPECT_GE(random[a], 1 / prediction_factor) << scalar << " " << algorithm_names[a];
@@ -383,7 +392,8 @@ TEST_P(Stiff, ErrorsFollowTheConditioning) {
   print("nv " + std::to_string(model.nv) + ", cond(M) max " + sci(cond.cond_M_max) + " median " +
         sci(cond.cond_M_median) + ", pivot_min " + sci(cond.pivot_min) + " at " +
         cond.pivot_joint + ", digits_lost " + sci(cond.digits_lost()) + ", aba_digits_lost " +
-        sci(cond.aba_digits_lost()) + ", float_unrepresentable " +
+        sci(cond.aba_digits_lost()) + ", inertia_range " + sci(cond.inertia_range) +
+        ", float_unrepresentable " +
         std::to_string(cond.float_unrepresentable));
 
   numerics::ExactDynamics exact(model, numerics::reference_bits(cond.aba_digits_lost()));

@@ -18,21 +18,28 @@ void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
          std::span<const S> tau, std::span<S> qdd) {
   const Motion<S> a0 = base_acceleration(model);
 
-  // velocity pass: v_i = Xup v_p + vJ, c_i = v_i x vJ, IA_i = I_i, pA_i = v_i x* I_i v_i
+  // velocity pass in classical accelerations (rnea.hpp): a_i = [wd_i; ac_i], the acceleration of
+  // the body's origin, so that a_i = Xup a_p + c_i + S qdd_i and f_i = I_i a_i + pA_i hold with
+  // no linear velocity: with u = E w_p and [wJ; vJ] = S qd, w_i = u + wJ,
+  // c_i = [w_i x wJ; E (w_p x (w_p x r)) + (w_i + u) x vJ], pA_i = [w_i x I w_i; w_i x (w_i x h)]
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Velocity);
     const int p = model.parent[i];
-    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
+    const Xform<S>& X = ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
     const Motion<S> vJ = joint_motion(model, i, &qd[model.v_index[i]]);
-    if (p < 0) {
-      ws.v[i] = vJ;
-      ws.c[i] = Motion<S>{};  // vJ x vJ = 0
+    Vec3<S>& w = ws.v[i].ang;
+    if (p < 0) {  // the base does not move
+      w = vJ.ang;
+      ws.c[i] = {{}, cross(w, vJ.lin)};
     } else {
-      ws.v[i] = apply_motion(ws.Xup[i], ws.v[p]) + vJ;
-      ws.c[i] = cross_motion(ws.v[i], vJ);
+      const Vec3<S>& wp = ws.v[p].ang;
+      const Vec3<S> u = mul(X.E, wp);
+      w = u + vJ.ang;
+      ws.c[i] = {cross(w, vJ.ang), mul(X.E, cross(wp, cross(wp, X.r))) + cross(w + u, vJ.lin)};
     }
-    ws.IA[i] = articulated(model.I[i]);
-    ws.pA[i] = cross_force(ws.v[i], mul(model.I[i], ws.v[i]));
+    const RigidInertia<S>& I = model.I[i];
+    ws.IA[i] = articulated(I);
+    ws.pA[i] = {cross(w, mul(I.I, w)), cross(w, cross(w, I.h))};
   }
 
   // articulated inertia pass: U_i = IA_i S_i, D_i = S_i^T U_i, u_i = tau_i - S_i^T pA_i;
@@ -72,8 +79,7 @@ void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
     TraceHook<S>::enter(i, Pass::Acceleration);
     const int k = model.v_index[i];
     const int p = model.parent[i];
-    const Motion<S> a1 = p < 0 ? apply_motion(ws.Xup[i], a0)
-                               : apply_motion(ws.Xup[i], ws.a[p]) + ws.c[i];
+    const Motion<S> a1 = apply_motion(ws.Xup[i], p < 0 ? a0 : ws.a[p]) + ws.c[i];
     if (model.joint_type[i] == JointType::Free) {
       ws.a[i] = solve(ws.IA[i], joint_force(model, i, &tau[k]) - ws.pA[i]);
       const Motion<S> aJ = ws.a[i] - a1;

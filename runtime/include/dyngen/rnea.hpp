@@ -16,23 +16,40 @@ void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
           std::span<const S> qdd, std::span<S> tau) {
   const Motion<S> a0 = base_acceleration(model);
 
-  // forward pass: v_i = Xup v_p + S qd_i, a_i = Xup a_p + S qdd_i + v_i x S qd_i,
-  // f_i = I_i a_i + v_i x* I_i v_i
+  // forward pass with classical accelerations, so that the linear velocity never enters (Craig,
+  // "Introduction to Robotics", eqs. 6.45-6.50; Khalil & Dombre, sec. 9.5): w_i, wd_i and the
+  // acceleration ac_i of the body's origin, where RBDA's spatial a_i = [wd_i; ac_i - w_i x v_i].
+  // With u = E w_p the parent's angular velocity in body axes and [wJ; vJ] = S qd:
+  //   w_i = u + wJ,  wd_i = E wd_p + (S qdd)_ang + w_i x wJ,
+  //   ac_i = E (ac_p + wd_p x r + w_p x (w_p x r)) + (S qdd)_lin + (w_i + u) x vJ,
+  //   f_i = [I wd_i + w_i x I w_i + h x ac_i; m ac_i + wd_i x h + w_i x (w_i x h)],
+  // RBDA's I_i a_i + v_i x* I_i v_i with the terms in v_i's linear part cancelled.
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Forward);
     const int k = model.v_index[i];
     const int p = model.parent[i];
-    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
+    const Xform<S>& X = ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
     const Motion<S> vJ = joint_motion(model, i, &qd[k]);
     const Motion<S> aJ = joint_motion(model, i, &qdd[k]);
-    if (p < 0) {
-      ws.v[i] = vJ;  // the base does not move, and vJ x vJ = 0
-      ws.a[i] = apply_motion(ws.Xup[i], a0) + aJ;
+    Vec3<S>& w = ws.v[i].ang;
+    Vec3<S>& wd = ws.a[i].ang;
+    Vec3<S>& ac = ws.a[i].lin;
+    if (p < 0) {  // the base does not move
+      w = vJ.ang;
+      wd = aJ.ang;
+      ac = mul(X.E, a0.lin) + aJ.lin + cross(w, vJ.lin);
     } else {
-      ws.v[i] = apply_motion(ws.Xup[i], ws.v[p]) + vJ;
-      ws.a[i] = apply_motion(ws.Xup[i], ws.a[p]) + aJ + cross_motion(ws.v[i], vJ);
+      const Vec3<S>& wp = ws.v[p].ang;
+      const Vec3<S>& wdp = ws.a[p].ang;
+      const Vec3<S> u = mul(X.E, wp);
+      w = u + vJ.ang;
+      wd = mul(X.E, wdp) + aJ.ang + cross(w, vJ.ang);
+      const Vec3<S> acp = ws.a[p].lin + cross(wdp, X.r) + cross(wp, cross(wp, X.r));
+      ac = mul(X.E, acp) + aJ.lin + cross(w + u, vJ.lin);
     }
-    ws.f[i] = mul(model.I[i], ws.a[i]) + cross_force(ws.v[i], mul(model.I[i], ws.v[i]));
+    const RigidInertia<S>& I = model.I[i];
+    ws.f[i] = {mul(I.I, wd) + cross(w, mul(I.I, w)) + cross(I.h, ac),
+               scale(ac, I.m) + cross(wd, I.h) + cross(w, cross(w, I.h))};
   }
 
   // backward pass: tau_i = S^T f_i, f_p += Xup^T f_i
@@ -44,10 +61,36 @@ void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
   }
 }
 
-/// Generalised gravity g(q) = rnea(q, 0, 0): the torques that hold the robot still.
+/// Generalised gravity g(q), what rnea(q, 0, 0) computes: the torques that hold the robot still.
+/// At rest a subtree's force is its weight, so only its mass and first moment are carried up,
+/// not a body force and its transform per body.
 template <class S>
 void gravity(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<S> g) {
-  rnea<S>(model, ws, q, ws.zero, ws.zero, g);
+  const Motion<S> a0 = base_acceleration(model);
+
+  // forward pass: the base's upward acceleration a_i = E a_p in body axes
+  for (int i = 0; i < model.nbodies; ++i) {
+    TraceHook<S>::enter(i, Pass::Forward);
+    const int p = model.parent[i];
+    ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
+    ws.a[i].lin = mul(ws.Xup[i].E, p < 0 ? a0.lin : ws.a[p].lin);
+    ws.Ic[i] = model.I[i];
+  }
+
+  // backward pass: the subtree's mass m_i and first moment h_i about the body's origin; its
+  // weight's force f_i = [h_i x a_i; m_i a_i], g_i = S^T f_i; m_p += m_i, h_p += m_i r + E^T h_i
+  // (the first moment moved to the parent's origin, RBDA eq. 2.66)
+  for (int i = model.nbodies - 1; i >= 0; --i) {
+    TraceHook<S>::enter(i, Pass::Backward);
+    const RigidInertia<S>& Ic = ws.Ic[i];
+    const Vec3<S>& a = ws.a[i].lin;
+    joint_project(model, i, Force<S>{cross(Ic.h, a), scale(a, Ic.m)}, &g[model.v_index[i]]);
+    const int p = model.parent[i];
+    if (p < 0) continue;
+    const Xform<S>& X = ws.Xup[i];
+    ws.Ic[p].m = ws.Ic[p].m + Ic.m;
+    ws.Ic[p].h = ws.Ic[p].h + scale(X.r, Ic.m) + mul_T(X.E, Ic.h);
+  }
 }
 
 /// Nonlinear effects h(q, v) = C(q, v) v + g(q) = rnea(q, v, 0): Coriolis, centrifugal and

@@ -62,8 +62,9 @@ struct Workspace {
 
   std::vector<Xform<S>> Xup;              // [nbodies] parent to body transform
   std::vector<Xform<S>> X0;               // [nbodies] base to body (forward_kinematics)
-  std::vector<Motion<S>> v;               // [nbodies] body velocity
-  std::vector<Motion<S>> a;               // [nbodies] body acceleration (gravity included)
+  std::vector<Motion<S>> v;               // [nbodies] body velocity (rnea, aba: angular only)
+  std::vector<Motion<S>> a;               // [nbodies] body acceleration, gravity included
+                                          // (rnea, aba: classical, rnea.hpp)
   std::vector<Motion<S>> c;               // [nbodies] velocity-product acceleration (ABA)
   std::vector<Force<S>> f;                // [nbodies] body force (RNEA)
   std::vector<RigidInertia<S>> Ic;        // [nbodies] composite inertia (CRBA)
