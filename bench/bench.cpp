@@ -9,9 +9,11 @@
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <chrono>
 #include <ctime>
 #include <fstream>
 #include <kdl/chaindynparam.hpp>
@@ -22,6 +24,7 @@
 #include <memory>
 #include <optional>
 #include <regex>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -45,9 +48,9 @@ constexpr double tolerance = 1e-8;  // of the check against the runtime (the pee
 
 constexpr Algorithm Rnea = Algorithm::Rnea, Crba = Algorithm::Crba, Aba = Algorithm::Aba;
 constexpr Algorithm algorithms[] = {Rnea, Crba, Aba};
-enum Implementation { Generated, Snapped, Unrolled, Runtime, Mujoco, Kdl };
-constexpr const char* implementation_names[] = {"generated", "snapped", "unrolled", "runtime",
-                                                "mujoco",    "kdl"};
+enum Implementation { Generated, Snapped, Unrolled, Copy, Runtime, Mujoco, Kdl };
+constexpr const char* implementation_names[] = {"generated", "snapped", "unrolled", "copy",
+                                                "runtime",   "mujoco",  "kdl"};
 
 int output_size(Algorithm a, int nv) { return a == Crba ? nv * nv : nv; }
 
@@ -319,7 +322,7 @@ struct Subject {
   const Package& package;
   gen::Robot robot;
   std::vector<State> states;
-  std::unique_ptr<GeneratedCode> generated, snapped, unrolled;
+  std::unique_ptr<GeneratedCode> generated, snapped, unrolled, copy;
   std::unique_ptr<RuntimeCode> runtime;
   std::unique_ptr<MujocoCode> mujoco;
   std::unique_ptr<KdlCode> kdl;
@@ -353,19 +356,21 @@ void add(const Package& p, Implementation i, Code* code) {
 
 std::unique_ptr<Subject> make_subject(const Package& p) {
   auto s = std::unique_ptr<Subject>(
-      new Subject{p, gen::load_robot(p.input, load_options(p)), {}, {}, {}, {}, {}, {}, {}});
+      new Subject{p, gen::load_robot(p.input, load_options(p)), {}, {}, {}, {}, {}, {}, {}, {}});
   Random rng(seed);
   for (int k = 0; k < state_count; ++k)
     s->states.push_back(numerics::random_state(s->robot.model, rng));
   s->generated = std::make_unique<GeneratedCode>(p.generated, s->robot.model, s->states);
   s->snapped = std::make_unique<GeneratedCode>(p.snapped, s->robot.model, s->states);
   s->unrolled = std::make_unique<GeneratedCode>(p.unrolled, s->robot.model, s->states);
+  s->copy = std::make_unique<GeneratedCode>(p.copy, s->robot.model, s->states);
   s->runtime = std::make_unique<RuntimeCode>(s->robot.model, s->states);
   s->mujoco = std::make_unique<MujocoCode>(s->robot, p.urdf, p.floating_base, s->states);
   s->kdl = std::make_unique<KdlCode>(s->robot, p.urdf, p.floating_base);
   add(p, Generated, s->generated.get());
   add(p, Snapped, s->snapped.get());
   add(p, Unrolled, s->unrolled.get());
+  add(p, Copy, s->copy.get());
   add(p, Runtime, s->runtime.get());
   add(p, Mujoco, s->mujoco.get());
   add(p, Kdl, s->kdl.get());
@@ -382,18 +387,23 @@ OperationCounts operation_counts(const char* header) {
   OperationCounts counts;
   if (!header) return counts;
   std::ifstream in(header);
-  const std::regex line(R"(^//\s+(rnea|crba|aba)?\s+(generated|runtime):\s+(.*)$)");
+  // "//   rnea" opens an algorithm's lines, "//     generated: add 235, mul 325, ..." follow
+  const std::regex algorithm_line(R"(^//\s+(\w+)$)");
+  const std::regex count_line(R"(^//\s+(generated|runtime):\s+(.*)$)");
   const std::regex count(R"([a-z]+ (\d+))");
   int algorithm = -1;
   for (std::string text; std::getline(in, text) && text.starts_with("//");) {
     std::smatch m;
-    if (!std::regex_match(text, m, line)) continue;
-    if (m[1].matched) algorithm = m[1] == "rnea" ? 0 : m[1] == "crba" ? 1 : 2;
+    if (std::regex_match(text, m, algorithm_line)) {
+      algorithm = m[1] == "rnea" ? 0 : m[1] == "crba" ? 1 : m[1] == "aba" ? 2 : -1;
+      continue;
+    }
+    if (algorithm < 0 || !std::regex_match(text, m, count_line)) continue;
     long total = 0;
-    const std::string list = m[3];
+    const std::string list = m[2];
     for (std::sregex_iterator it(list.begin(), list.end(), count), end; it != end; ++it)
       total += std::stol((*it)[1]);
-    (m[2] == "generated" ? counts.generated : counts.runtime)[algorithm] = total;
+    (m[1] == "generated" ? counts.generated : counts.runtime)[algorithm] = total;
   }
   return counts;
 }
@@ -410,6 +420,105 @@ std::string format_ratio(std::optional<double> x, std::optional<double> y) {
   char text[32];
   std::snprintf(text, sizeof text, "%.2f", *x / *y);
   return text;
+}
+
+/// A pair of times of the same or nearly the same operations that differ by this factor or more
+/// is placement, not code (issue 16: less than 20%).
+constexpr double robust_spread = 1.2;
+
+/// The paired measurement behind the robust-speed table: rounds, and the length of one burst.
+constexpr int paired_rounds = 31;
+constexpr double burst_seconds = 1e-3;
+
+/// The time of y over the time of x for algorithm a, measured so that load from elsewhere on a
+/// shared machine cancels: a burst of about burst_seconds of calls of x, then one of y (the order
+/// alternating by round), and the median over paired_rounds of each round's ratio. Separate
+/// medians of a few repetitions, as Google Benchmark takes them, differed between two runs of
+/// the same binary by more than the placement effect looked for.
+double paired_ratio(GeneratedCode& x, GeneratedCode& y, Algorithm a) {
+  using Clock = std::chrono::steady_clock;
+  const auto burst = [a](GeneratedCode& code, int calls) {
+    const auto start = Clock::now();
+    for (int k = 0; k < calls; ++k) {
+      code.run(a, k % state_count);
+      benchmark::ClobberMemory();
+    }
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  int calls = 16;
+  while (burst(x, calls) + burst(y, calls) < 2 * burst_seconds) calls *= 2;
+  std::vector<double> ratios;
+  for (int round = 0; round < paired_rounds; ++round) {
+    const bool x_first = round % 2 == 0;
+    const double first = burst(x_first ? x : y, calls), second = burst(x_first ? y : x, calls);
+    ratios.push_back(x_first ? second / first : first / second);
+  }
+  std::nth_element(ratios.begin(), ratios.begin() + paired_rounds / 2, ratios.end());
+  return ratios[paired_rounds / 2];
+}
+
+/// The slower of two times over the faster, from their ratio.
+std::optional<double> spread(std::optional<double> ratio) {
+  if (!ratio) return std::nullopt;
+  return std::max(*ratio, 1 / *ratio);
+}
+
+/// The robust-speed table: each robot's generated code against the same code linked a second
+/// time (copy), and against its snapped code where snapping removes less than 20% of the
+/// operations; a spread of robust_spread or more is flagged.
+template <class Time>
+void write_robust_speed(std::ostream& md, const std::vector<std::unique_ptr<Subject>>& subjects,
+                        const Time& time) {
+  std::printf("measuring the robust-speed pairs\n");
+  std::fflush(stdout);
+  std::ostringstream rows;
+  int pairs = 0, flagged = 0;
+  for (const auto& s : subjects) {
+    const Package& p = s->package;
+    if (!p.snapped_header) continue;  // the chains have no copy
+    const OperationCounts ops = operation_counts(p.header);
+    const OperationCounts snapped_ops = operation_counts(p.snapped_header);
+    for (const Algorithm a : algorithms) {
+      const auto g = time(p, a, Generated), c = time(p, a, Copy), sn = time(p, a, Snapped);
+      if (!g || !c) continue;  // filtered out
+      const long n = ops.generated[static_cast<int>(a)],
+                 n_snapped = snapped_ops.generated[static_cast<int>(a)];
+      const double removed = 1.0 - static_cast<double>(n_snapped) / static_cast<double>(n);
+      const auto copy_spread = spread(paired_ratio(*s->generated, *s->copy, a));
+      const auto snapped_spread =
+          removed < 0.2 ? spread(paired_ratio(*s->generated, *s->snapped, a)) : std::nullopt;
+      std::string flag;
+      const std::pair<const char*, std::optional<double>> checks[] = {{"copy", copy_spread},
+                                                                      {"snapped", snapped_spread}};
+      for (const auto& [name, x] : checks) {
+        if (!x) continue;
+        ++pairs;
+        if (*x < robust_spread) continue;
+        ++flagged;
+        flag += std::string(flag.empty() ? "" : ", ") + "**" + name + "**";
+      }
+      char percent[16];
+      std::snprintf(percent, sizeof percent, "%.0f%%", 100 * removed);
+      rows << "| " << p.robot << " | " << p.base << " | " << algorithm_name(a) << " | " << n
+           << " | " << format_ns(g) << " | " << format_ns(c) << " | "
+           << format_ratio(copy_spread, 1.0) << " | " << percent << " | " << format_ns(sn)
+           << " | " << format_ratio(snapped_spread, 1.0) << " | " << flag << " |\n";
+    }
+  }
+  if (pairs == 0) return;
+  md << "\n## Robust speed\n\n"
+     << "The same operations should take the same time wherever the linker puts them (issue 16). "
+        "copy: the generated code built a second time, as its own library, so that the same "
+        "instructions run from another address. generated, copy and snapped are the medians "
+        "above; spread is measured apart, in pairs: " << paired_rounds << " rounds of a burst of "
+     << burst_seconds * 1e3 << " ms of calls of each of the two, the slower over the faster, "
+        "the median of the rounds. The snapped code is compared only where snapping removes "
+        "less than 20% of the operations. A spread of " << robust_spread
+     << " or more is flagged: " << flagged << " of " << pairs << " pairs here.\n\n"
+     << "| robot | base | algorithm | ops | generated | copy | spread | snapping removes "
+        "| snapped | spread | flagged |\n"
+     << "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n"
+     << rows.str();
 }
 
 void write_results(const std::string& dir, const std::vector<std::unique_ptr<Subject>>& subjects,
@@ -465,6 +574,7 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
          << ops.runtime[static_cast<int>(a)] << " |\n";
     }
   }
+  write_robust_speed(md, subjects, time);
 
   // gnuplot: time (top row) and operation count (bottom row) against links, one panel per
   // algorithm; solid lines the planar chains, dashed the spatial ones.

@@ -30,6 +30,7 @@ struct Package {
   Functions generated;
   Functions snapped;  // the code dyngen --snap 1e-9 writes (null for the chains)
   Functions unrolled;  // the code dyngen --structure unrolled writes
+  Functions copy;  // generated's code in a second library, at another address (null for chains)
 };
 
 /// Every package, in the order of bench/CMakeLists.txt.
