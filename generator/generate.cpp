@@ -501,6 +501,18 @@ std::string snap_text(const SnapReport& s) {
       s.snapped, s.entries, s.exact, s.largest_change);
 }
 
+std::string snap_note(const Model<double>& model) {
+  Model<double> snapped = model;
+  const SnapReport s = snap(snapped, suggested_snap);
+  if (s.snapped == 0) return "";
+  return fmt::format(
+      "note: {} of {} model constants are within {:g} of 0 or +-1 without being exact (right "
+      "angles that the file's decimals or their conversion left at 1e-17 or 0.99999...);\n"
+      "  --snap {:g} makes them exact, so that the code drops their products, and moves the "
+      "model by at most {:.2g} relative.",
+      s.snapped, s.entries, suggested_snap, suggested_snap, s.largest_change);
+}
+
 std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
   std::string text = fmt::format(
       "Conditioning over {} sampled states (docs/numerics.md):\n"

@@ -77,6 +77,13 @@ inline constexpr double min_float_digits = 3, min_double_digits = 6;
 /// What --snap changed, in words, as the banner and the console say it.
 std::string snap_text(const SnapReport& s);
 
+/// The tolerance dyngen suggests snapping with (docs/performance.md, "Snapping").
+inline constexpr double suggested_snap = 1e-9;
+
+/// Without --snap: a note of the constants that --snap suggested_snap would make exact, or ""
+/// when there are none.
+std::string snap_note(const Model<double>& model);
+
 /// The conditioning estimate in words (the ABA lines only if with_aba), as the banner and
 /// dyngen report record it.
 std::string conditioning_text(const numerics::Conditioning& c, bool with_aba);

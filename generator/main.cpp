@@ -516,6 +516,8 @@ int main(int argc, char** argv) {
                    100.0 * (1.0 - double(c.generated.total()) / double(c.runtime.total())),
                    to_string(c.generated));
       if (robot.snapped) fmt::print("{}\n", snap_text(*robot.snapped));
+      else if (const std::string note = snap_note(robot.model); !note.empty())
+        fmt::print("{}\n", note);
       fmt::print("{}\n", generated.conditioning_text);
       if (generated.footprint) fmt::print("{}\n", footprint_text(*generated.footprint));
       fmt::print("wrote {} files to {}:", generated.files.size(), output);

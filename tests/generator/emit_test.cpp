@@ -467,6 +467,27 @@ TEST(Banner, RecordsWhatSnapChanged) {
       << header.substr(0, 2000);
 }
 
+TEST(SnapNote, NamesTheConstantsThatSnappingWouldMakeExact) {
+  // iiwa14's URDF writes its right angles as rounded decimals; the loaded snapped model says
+  // how many constants --snap 1e-9 moves, and the note without --snap must say the same
+  LoadOptions load;
+  load.snap = suggested_snap;
+  const std::string iiwa14 = std::string(DYNGEN_TEST_MODELS) + "/iiwa14.urdf";
+  const Robot snapped = load_robot(iiwa14, load);
+  ASSERT_TRUE(snapped.snapped);
+  ASSERT_GT(snapped.snapped->snapped, 0);
+  const std::string note = snap_note(load_robot(iiwa14).model);
+  EXPECT_EQ(note.rfind("note: " + std::to_string(snapped.snapped->snapped) + " of " +
+                           std::to_string(snapped.snapped->entries) + " model constants",
+                       0),
+            0u)
+      << note;
+  EXPECT_NE(note.find("--snap 1e-09"), std::string::npos) << note;
+  // nothing left to snap: no note
+  EXPECT_EQ(snap_note(snapped.model), "");
+  EXPECT_EQ(snap_note(load_robot(std::string(DYNGEN_TEST_MODELS) + "/planar5.yaml").model), "");
+}
+
 /// Operations of the generated frame_jacobians for the frames named (every link's if none),
 /// and the number of frames.
 std::pair<long, long> jacobian_operations(const std::string& file, bool floating_base,
