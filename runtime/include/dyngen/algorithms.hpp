@@ -150,7 +150,9 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          aba<S>(m, ws, in[0], in[1], in[2], out[0]);
        }},
-      {"gravity", "Generalised gravity g(q) = rnea(q, 0, 0), from each subtree's mass and first moment.", {q_array}, {g_array},
+      {"gravity",
+       "Generalised gravity g(q) = rnea(q, 0, 0), from each subtree's mass and first moment.",
+       {q_array}, {g_array},
        Growth::Linear, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) { gravity<S>(m, ws, in[0], out[0]); }},
       {"nle", "Nonlinear effects h(q, v) = C(q, v) v + g(q): rnea at a = 0.", {q_array, v_array},
