@@ -249,7 +249,8 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
                       const Dialect& dialect) {
   const auto& nodes = program.graph.nodes;
   const std::vector<bool> live = live_nodes(program);
-  const char* type = std::is_same_v<T, float> ? "float" : "double";
+  const std::string scalar = std::is_same_v<T, float> ? "float" : "double";
+  const std::string type = dialect.batch() ? "lane" : scalar;  // of each computed value
   const std::string& prefix = program.algorithm;
 
   // sin and cos of joint angles come precomputed in trig (joint_trig), so that one call of
@@ -284,7 +285,8 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
       std::size_t offset = 0;
       for (std::size_t a = 0; a < program.outputs.size() && !in_place; ++a) {
         const std::size_t size = program.outputs[a].size;
-        in_place = size == call.outputs[j] && !output_in_place[a];
+        // batch outputs are stored from lanes
+        in_place = !dialect.batch() && size == call.outputs[j] && !output_in_place[a];
         for (std::size_t k = 0; in_place && k < size; ++k)
           in_place = program.stored[offset + k] == first + static_cast<int>(k);
         if (in_place) {
@@ -353,13 +355,25 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     if (n.op == Op::Const) return literal(n.value);
     if (n.op == Op::Input) {
       const InputRef& in = program.graph.inputs[n.input];
-      return fmt::format("{}[{}]", in.array, in.index);
+      return dialect.batch() ? fmt::format("{}{}", in.array, in.index)
+                             : fmt::format("{}[{}]", in.array, in.index);
     }
     if (is_trig(n))
-      return fmt::format("{}{}_q[{}]", dialect.trig_member(), n.op == Op::Sin ? "sin" : "cos",
-                         program.graph.inputs[nodes[n.a].input].index);
+    {
+      const char* function = n.op == Op::Sin ? "sin" : "cos";
+      const int index = program.graph.inputs[nodes[n.a].input].index;
+      return dialect.batch() ? fmt::format("{}_q{}", function, index)
+                             : fmt::format("{}{}_q[{}]", dialect.trig_member(), function, index);
+    }
     if (n.op == Op::Result) return result_name(n);
     return name[id];
+  };
+  // an element of an array of values: in batch code a constant fills every lane
+  auto element = [&](int id) {
+    if (!dialect.batch() || nodes[id].op != Op::Const) return operand(id);
+    std::string copies = operand(id);
+    for (int l = 1; l < dialect.lanes; ++l) copies += ", " + operand(id);
+    return "lane{" + copies + "}";
   };
   auto expression = [&](const Node<T>& n, auto&& arg) {
     switch (n.op) {
@@ -386,7 +400,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
         groups[g].size(), users);
     const std::size_t nk = first.constants.size();
     if (nk > 0) {
-      code.helpers += fmt::format("{} {} {}_k[{}][{}] = {{\n", dialect.table(), type, fn,
+      code.helpers += fmt::format("{} {} {}_k[{}][{}] = {{\n", dialect.table(), scalar, fn,
                                   groups[g].size(), nk);
       for (const int member : groups[g]) {
         std::string row;
@@ -397,7 +411,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
       code.helpers += "};\n";
     }
     code.helpers += fmt::format("static void {}({}const {} x[{}], {} y[{}]){}\n{{\n", fn,
-                                nk > 0 ? fmt::format("const {} k[{}], ", type, nk) : "", type,
+                                nk > 0 ? fmt::format("const {} k[{}], ", scalar, nk) : "", type,
                                 first.inputs.size(), type, first.outputs.size(),
                                 dialect.no_throw());
     std::map<int, std::string> local;
@@ -417,12 +431,16 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
 
   // the arrays that the emitted statements and output stores read
   std::map<std::string, bool> used;
+  std::set<int> loads;  // batch code: the input and trig nodes read, loaded into lanes first
   auto use = [&](int id) {
     const Node<T>& n = nodes[id];
     if (n.op == Op::Input)
       used[program.graph.inputs[n.input].array] = true;
     else if (is_trig(n))
       used["trig"] = true;
+    else
+      return;
+    loads.insert(id);
   };
   for (std::size_t id = 0; id < nodes.size(); ++id)
     if (is_op[id]) program.graph.for_each_operand(static_cast<int>(id), use);
@@ -438,6 +456,18 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
       out += fmt::format("    {};  // {}\n\n", dialect.discard(array),
                          array == "q" && used["trig"] ? "read only through trig"
                                                       : "no output of this robot depends on it");
+  if (dialect.batch() && !loads.empty()) {
+    out += "    // the inputs' lanes\n";
+    for (const int id : loads) {
+      const Node<T>& n = nodes[id];
+      const InputRef& in = program.graph.inputs[n.op == Op::Input ? n.input : nodes[n.a].input];
+      const std::string from =
+          n.op == Op::Input ? in.array : fmt::format("trig.{}_q", n.op == Op::Sin ? "sin" : "cos");
+      out += fmt::format("    lane {}; load({}, {} + {} * lanes);\n", operand(id), operand(id),
+                         from, in.index);
+    }
+    out += "\n";
+  }
   if (w_size > 0)
     out += fmt::format("    {} w[{}];  // the outputs of the sections that shared functions compute\n\n",
                        type, w_size);
@@ -476,7 +506,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
                                               call.names[call.tables.size() + j]));
         if (added) {
           std::vector<std::string> items;
-          for (const int id : ids) items.push_back(operand(id));
+          for (const int id : ids) items.push_back(element(id));
           text += fmt::format("    const {} {}[{}] = {};\n", type, it->second, ids.size(),
                               braced_list(items));
         }
@@ -490,7 +520,34 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
         text += fmt::format("    {} {}[{}];\n", type, array, call.outputs[j]);
       arguments.push_back(array);
     }
-    return text + wrapped_call(fmt::format("dyngen::kernels::{}", call.kernel), arguments);
+    const std::string kernel = fmt::format("dyngen::kernels::{}", call.kernel);
+    if (!dialect.batch()) return text + wrapped_call(kernel, arguments);
+    // lane by lane: each state's numbers copied out of the lanes, the scalar kernel, and its
+    // results copied back
+    const std::size_t first_array = call.ints.size() + call.tables.size();
+    const std::size_t arrays = call.inputs.size() + call.outputs.size();
+    std::string declare, copy_in, copy_out;
+    for (std::size_t j = 0; j < arrays; ++j) {
+      const bool input = j < call.inputs.size();
+      const std::string& array = arguments[first_array + j];
+      const std::size_t size = input ? call.inputs[j].size() : call.outputs[j - call.inputs.size()];
+      declare += fmt::format("        {} {}_l[{}];\n", scalar, array, size);
+      if (input)
+        copy_in += fmt::format("        for (int k = 0; k < {1}; ++k) {0}_l[k] = {0}[k][l];\n",
+                               array, size);
+      else
+        copy_out += fmt::format("        for (int k = 0; k < {1}; ++k) {0}[k][l] = {0}_l[k];\n",
+                                array, size);
+      arguments[first_array + j] = array + "_l";
+    }
+    std::string call_text = wrapped_call(kernel, arguments), indented;
+    for (std::size_t pos = 0; pos < call_text.size();) {
+      const std::size_t end = call_text.find('\n', pos);
+      indented += "    " + call_text.substr(pos, end - pos + 1);
+      pos = end == std::string::npos ? call_text.size() : end + 1;
+    }
+    return text + "    for (int l = 0; l < lanes; ++l) {\n" + declare + copy_in + indented +
+           copy_out + "    }\n";
   };
   std::vector<int> per_body(model.nbodies + 1, 0);
   const std::vector<std::string> prefixes = temporary_prefixes(model);
@@ -498,7 +555,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     out += section_header<T>(model, s.body, s.pass);
     if (s.group >= 0) {
       std::string x;
-      for (const int id : s.inputs) x += (x.empty() ? "" : ", ") + operand(id);
+      for (const int id : s.inputs) x += (x.empty() ? "" : ", ") + element(id);
       const std::string k = s.constants.empty()
                                 ? std::string()
                                 : fmt::format("{}_shape_{}_k[{}], ", prefix, s.group, s.instance);
@@ -530,8 +587,12 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
         if (frames > 0 && k % (array.size / frames) == 0)
           out += fmt::format("    // frame '{}'\n",
                              safe_text(model.frames[k / (array.size / frames)].name));
-        out += fmt::format("    {}[{}] = {};\n", array.spec.name, k,
-                           operand(program.stored[stored + k]));
+        if (dialect.batch())
+          out += fmt::format("    store({} + {} * lanes, {});\n", array.spec.name, k,
+                             operand(program.stored[stored + k]));
+        else
+          out += fmt::format("    {}[{}] = {};\n", array.spec.name, k,
+                             operand(program.stored[stored + k]));
       }
     }
     stored += array.size;
@@ -550,9 +611,9 @@ std::vector<bool> revolute_angles(const Model<double>& model) {
 
 /// dyngen_sincos calls for the marked q entries into `trig` (the trig's name and member access,
 /// "trig." or "trig->"): one array call per run of consecutive ones, which the compiler can
-/// vectorise.
+/// vectorise. Batch code (`batch`) holds a run's lanes together too, so it is one call as well.
 std::string sincos_calls(const std::vector<bool>& marked, bool single_precision,
-                         const std::string& trig) {
+                         const std::string& trig, bool batch = false) {
   const char* sincos = single_precision ? "dyngen_sincosf" : "dyngen_sincos";
   const int nq = static_cast<int>(marked.size());
   std::string out;
@@ -563,7 +624,12 @@ std::string sincos_calls(const std::vector<bool>& marked, bool single_precision,
     }
     int end = k;
     while (end < nq && marked[end]) ++end;
-    if (end - k == 1)
+    if (batch)
+      out += fmt::format(
+          "    {3}_array(q + {0} * lanes, {4}sin_q + {0} * lanes, {4}cos_q + {0} * lanes, {1} * "
+          "lanes);  // q[{0}..{2}]\n",
+          k, end - k, end - 1, sincos, trig);
+    else if (end - k == 1)
       out += fmt::format("    {1}(q[{0}], &{2}sin_q[{0}], &{2}cos_q[{0}]);\n", k, sincos, trig);
     else
       out += fmt::format(
@@ -585,8 +651,8 @@ std::string Dialect::size(const std::string& local) const {
 
 std::string emit_joint_trig(const Model<double>& model, bool single_precision,
                             const Dialect& dialect) {
-  const std::string out =
-      sincos_calls(revolute_angles(model), single_precision, dialect.trig_member());
+  const std::string out = sincos_calls(revolute_angles(model), single_precision,
+                                       dialect.trig_member(), dialect.batch());
   if (out.empty())
     return fmt::format("    {};  // no revolute joint\n    {};\n", dialect.discard("q"),
                        dialect.discard("trig"));
@@ -597,10 +663,11 @@ std::string emit_trig_fill(const Model<double>& model, bool single_precision,
                            const std::vector<bool>& angles, const Dialect& dialect) {
   if (angles == revolute_angles(model) ||
       std::find(angles.begin(), angles.end(), true) == angles.end())
-    return fmt::format("    {}(q, {}trig);\n", dialect.external("joint_trig"),
+    return fmt::format("    {}(q, {}trig);\n",
+                       dialect.external(dialect.batch() ? "joint_trig_batch" : "joint_trig"),
                        dialect.c() ? "&" : "");
   std::string out = "    // the angles this function reads\n";
-  return out.append(sincos_calls(angles, single_precision, "trig."));
+  return out.append(sincos_calls(angles, single_precision, "trig.", dialect.batch()));
 }
 
 template OpCounts count_ops<double>(const Program<double>&, bool);

@@ -61,8 +61,12 @@ enum class Language { Cpp, C };
 struct Dialect {
   Language language = Language::Cpp;
   std::string name;  // the package's: C++ namespace, C prefix
+  /// Batch code (C++ only): each value is a `lane` of this many states (GCC and clang vector
+  /// types), inputs and outputs hold entry i of state l at [i * lanes + l]; 0: scalar code.
+  int lanes = 0;
 
   bool c() const { return language == Language::C; }
+  bool batch() const { return lanes > 0; }
   /// A name the header declares, as code outside the namespace sees it in C: "ur5_rnea".
   std::string external(const std::string& local) const { return c() ? name + "_" + local : local; }
   /// "nq" in C++ (a constant of the namespace), "UR5_NQ" in C (a macro).
@@ -76,7 +80,9 @@ struct Dialect {
   const char* trig_member() const { return c() ? "trig->" : "trig."; }
   /// The _trig functions' parameter.
   std::string trig_parameter() const {
-    return c() ? fmt::format("const {}_JointTrig* trig", name) : "const JointTrig& trig";
+    return c()       ? fmt::format("const {}_JointTrig* trig", name)
+           : batch() ? "const JointTrigBatch& trig"
+                     : "const JointTrig& trig";
   }
 };
 
@@ -90,7 +96,9 @@ struct EmittedCode {
 };
 
 /// The code of one traced function. C has no kernels (C++ templates): a C program must be traced
-/// with every kernel call inlined.
+/// with every kernel call inlined. Batch code loads the inputs it reads into lanes first, stores
+/// the outputs from lanes last, and runs a kernel call lane by lane (the scalar kernel on each
+/// state's numbers), so that every lane computes the scalar code's operations.
 template <class T>
 EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure,
                       const Dialect& dialect = {});

@@ -134,17 +134,48 @@ std::string declaration(const std::string& name, const std::vector<std::string>&
 }
 
 /// The generated function's parameters: the inputs, with `trig` after q in the _trig form, then
-/// the outputs.
+/// the outputs; batch arrays hold `lanes` states.
 std::vector<std::string> parameters(const AlgorithmSpec<double>& spec, const std::string& scalar,
                                     bool trig, const Dialect& dialect) {
+  const char* lanes = dialect.batch() ? " * lanes" : "";
   std::vector<std::string> out;
   for (const ArraySpec& a : spec.inputs) {
-    out.push_back(fmt::format("const {} {}[{}]", scalar, a.name, extent_in(a.extent, dialect)));
+    out.push_back(
+        fmt::format("const {} {}[{}{}]", scalar, a.name, extent_in(a.extent, dialect), lanes));
     if (trig && a.name == "q") out.push_back(dialect.trig_parameter());
   }
   for (const ArraySpec& a : spec.outputs)
-    out.push_back(fmt::format("{} {}[{}]", scalar, a.name, extent_in(a.extent, dialect)));
+    out.push_back(fmt::format("{} {}[{}{}]", scalar, a.name, extent_in(a.extent, dialect), lanes));
   return out;
+}
+
+/// The parameters of f_many: the count, then the arrays of count states each.
+std::vector<std::string> many_parameters(const AlgorithmSpec<double>& spec,
+                                         const std::string& scalar) {
+  std::vector<std::string> out{"long count"};
+  for (const ArraySpec& a : spec.inputs) out.push_back(fmt::format("const {}* {}", scalar, a.name));
+  for (const ArraySpec& a : spec.outputs) out.push_back(fmt::format("{}* {}", scalar, a.name));
+  return out;
+}
+
+/// f_many's body in many.cpp.in: each batch's arrays gathered into lanes (gather), f_batch's
+/// arguments, and its outputs scattered back (scatter).
+std::map<std::string, std::string> many_values(const AlgorithmSpec<double>& spec,
+                                               const std::string& scalar, const Dialect& dialect) {
+  std::string gather, scatter, arguments;
+  for (const auto* list : {&spec.inputs, &spec.outputs})
+    for (const ArraySpec& a : *list) {
+      const std::string n = extent_in(a.extent, dialect);
+      gather += fmt::format("        {} {}_lanes[{} * lanes];\n", scalar, a.name, n);
+      if (list == &spec.inputs)
+        gather += fmt::format("        to_lanes<{}>({}, first, count, {}_lanes);\n", n, a.name,
+                              a.name);
+      else
+        scatter += fmt::format("        from_lanes<{}>({}_lanes, first, count, {});\n", n,
+                               a.name, a.name);
+      arguments += fmt::format("{}{}_lanes", arguments.empty() ? "" : ", ", a.name);
+    }
+  return {{"gather", gather}, {"scatter", scatter}, {"arguments", arguments}};
 }
 
 /// The header's list of the arrays that the requested functions take, each once, and how q holds
@@ -295,8 +326,9 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
         "float on the M4F); generate --scalar float",
         target_names[static_cast<int>(options.target)]));
   const Dialect dialect{options.language, ns};
+  const Dialect batch_dialect{Language::Cpp, ns, options.batch};
   const bool single = std::is_same_v<T, float>;
-  std::string declarations, definitions, cases;
+  std::string declarations, definitions, cases, batch_declarations, batch_definitions;
   bool calls_kernels = false;
   for (const Algorithm& a : options.algorithms) {
     step(fmt::format("tracing {} ({})", a, scalar));
@@ -363,8 +395,45 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                    {"namespace", ns},
                    {"call", dialect.c() ? dialect.external(a) : ns + "::" + a},
                    {"arguments", arguments}});
+    if (!batch_dialect.batch()) continue;
+
+    // the same program printed over lanes, and the function over any count of states
+    step(fmt::format("printing {} for batches of {}", a, options.batch));
+    const EmittedCode lanes = emit_code(program, model, options.structure, batch_dialect);
+    const std::string batch_call = declaration(
+                          a + "_batch", parameters(spec, scalar, false, batch_dialect), batch_dialect),
+                      batch_trig_call =
+                          declaration(a + "_batch_trig", parameters(spec, scalar, true, batch_dialect),
+                                      batch_dialect),
+                      many_call = declaration(a + "_many", many_parameters(spec, scalar), batch_dialect);
+    batch_declarations += fill("batch_function.hpp.in",
+                               {{"summary", summary},
+                                {"lanes", std::to_string(options.batch)},
+                                {"batch_declaration", batch_call},
+                                {"trig_declaration", batch_trig_call},
+                                {"many_declaration", many_call}}) +
+                          "\n";
+    if (!lanes.helpers.empty()) batch_definitions += "\n" + lanes.helpers;
+    batch_definitions +=
+        fill("function.cpp.in",
+             {{"trig_name", a + "_batch_trig"},
+              {"trig_type", "JointTrigBatch"},
+              {"joint_trig", "joint_trig_batch"},
+              {"summary", summary + " (a batch)"},
+              {"declaration", batch_call},
+              {"trig_declaration", batch_trig_call},
+              {"trig_arguments", trig_arguments},
+              {"trig_fill", emit_trig_fill(model, single, lanes.angles, batch_dialect)},
+              {"counts", to_string(generated) + " per lane"},
+              {"body", lanes.body}});
+    std::map<std::string, std::string> many = many_values(spec, scalar, batch_dialect);
+    many.insert({{"summary", summary}, {"declaration", many_call}, {"batch", a + "_batch"}});
+    batch_definitions += fill("many.cpp.in", many);
+    cases += fill("batch_check.cpp.in",
+                  {{"name", a}, {"namespace", ns}, {"call", ns + "::" + a}, {"arguments", arguments}});
   }
   if (!declarations.empty()) declarations.pop_back();
+  if (!batch_declarations.empty()) batch_declarations.pop_back();
 
   std::string joint_names;
   const std::vector<std::string> names = velocity_names(model);
@@ -437,6 +506,22 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                  {"kernels_include", calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
                  {"definitions", definitions}})});
     }
+    if (batch_dialect.batch()) {
+      const std::map<std::string, std::string> values{{"banner", code_banner},
+                                                      {"name", ns},
+                                                      {"namespace", ns},
+                                                      {"scalar", scalar},
+                                                      {"lanes", std::to_string(options.batch)}};
+      std::map<std::string, std::string> h = values, cpp = values;
+      h.insert({{"robot", safe_text(robot.name)},
+                {"sincos", sincos},
+                {"declarations", batch_declarations}});
+      cpp.insert({{"joint_trig", emit_joint_trig(model, single, batch_dialect)},
+                  {"kernels_include", calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
+                  {"definitions", batch_definitions}});
+      files.push_back({ns + "_batch.hpp", fill("batch.hpp.in", h)});
+      files.push_back({ns + "_batch.cpp", fill("batch.cpp.in", cpp)});
+    }
     // the runtime's own header, verbatim: both sides compute sin and cos with the same code
     files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
     if (calls_kernels)
@@ -455,6 +540,8 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
          fill("check.cpp.in",
               {{"banner", code_banner},
                {"header", header},
+               {"batch_include",
+                batch_dialect.batch() ? fmt::format("#include \"{}_batch.hpp\"\n", ns) : ""},
                {"name", ns},
                {"namespace", ns},
                {"nq", dialect.c() ? dialect.size("nq") : ns + "::nq"},
@@ -473,7 +560,9 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                {"standard", dialect.c() ? "C99" : "C++17"},
                {"standard_name", dialect.c() ? "C" : "C++"},
                {"language", dialect.c() ? "C" : "CXX"},
+               {"check_flag", dialect.c() ? "check_c_compiler_flag" : "check_cxx_compiler_flag"},
                {"extension", dialect.c() ? "c" : "cpp"},
+               {"batch_source", batch_dialect.batch() ? fmt::format(" {}_batch.cpp", ns) : ""},
                {"feature", dialect.c() ? "c_std_99" : "cxx_std_17"},
                {"language_flags", dialect.c() ? "" : " -fno-exceptions -fno-rtti"},
                {"enable_check_language",

@@ -213,6 +213,7 @@ struct ModelFlags {
 struct CodeFlags {
   std::string algorithms = "rnea,crba,aba", scalar = "double", name, structure = "auto",
               target = "host", lang = "c++", jacobian_frame = "world";
+  int batch = 0;
 
   void add_to(CLI::App& app, bool firmware) {
     app.add_option("--algorithms", algorithms,
@@ -252,6 +253,12 @@ struct CodeFlags {
                                                          std::end(firmware_report_targets))))
           ->capture_default_str();
     } else {
+      app.add_option("--batch", batch,
+                     "also emit f_batch and f_many for each function: LANES states at once in "
+                     "SIMD lanes (2, 4, 8 or 16; 4 doubles or 8 floats fill AVX2), bit for bit "
+                     "with f in every lane; C++ only")
+          ->check(CLI::IsMember({2, 4, 8, 16}))
+          ->option_text("LANES");
       app.add_option("--target", target,
                      "the processor the code is for: dyngen warns where the scalar has no "
                      "hardware there (double on a Cortex-M4F or M33, whose FPU is "
@@ -262,8 +269,11 @@ struct CodeFlags {
     }
   }
 
-  /// Checks --name before the robot is read (so that a mistake costs no time).
-  void check_name() const {
+  /// Checks --name and --batch before the robot is read (so that a mistake costs no time).
+  void check_options() const {
+    if (batch > 0 && lang == "c")
+      throw InputError("--batch: batch functions are C++ (GCC's and clang's vector types); "
+                       "generate them with --lang c++");
     if (!name.empty() && !is_identifier(name))
       throw InputError(fmt::format(
           "--name {}: not usable as a C++ namespace, C prefix and file prefix (it must be "
@@ -287,6 +297,7 @@ struct CodeFlags {
                         : options.target == Target::Host ? Structure::Auto
                                                          : Structure::Shared;
     options.measure = options.target != Target::Host;
+    options.batch = batch;
     options.name = identifier(name.empty() ? robot.name : name);
     const Vec3<double>& g = robot.model.gravity;
     options.options_text =
@@ -294,6 +305,7 @@ struct CodeFlags {
                     "--gravity {},{},{} --name {}",
                     comma_list(options.algorithms), scalar, lang, structure, target, g.x, g.y,
                     g.z, options.name) +
+        (batch > 0 ? fmt::format(" --batch {}", batch) : "") +
         model.text();
     return options;
   }
@@ -429,7 +441,7 @@ int firmware_report_main(int argc, char** argv) {
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   int status = 0;
   const int error = run_reporting_errors("dyngen firmware-report", [&] {
-    code.check_name();
+    code.check_options();
     options.command = "dyngen firmware-report";
     for (int k = 1; k < argc; ++k) options.command += " " + std::string(argv[k]);
     if (!options.quiet) fmt::print("dyngen {} firmware-report: reading {}\n", version, input);
@@ -482,7 +494,7 @@ int main(int argc, char** argv) {
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
 
   return run_reporting_errors("dyngen", [&] {
-    code.check_name();
+    code.check_options();
     check_output_dir(output, force);
     if (!quiet) fmt::print("dyngen {}: reading {}\n", version, input);
     const Robot robot = load_robot(input, flags.load_options());

@@ -22,6 +22,7 @@
 // Checks every generated function against the dyngen runtime bit for bit (+0 and -0 count as
 // equal) on 10000 seeded random states and 2000 extreme ones (angles up
 // to 1e6 rad, speeds up to 1e3 rad/s). On failure it prints the first differing output.
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
@@ -150,6 +151,65 @@ void check_bit_for_bit(const char* name, Generated generated) {
     generated(x, mine);
     for (std::size_t k = 0; k < runtime.size(); ++k)
       ASSERT_TRUE(same_outputs(*spec, k, s, x, mine[k], runtime[k]));
+  }
+}
+
+/// Runs the runtime's `name` on every state and compares it with each lane of the batch function
+/// (`lanes` states a call, entry i of state l at [i * lanes + l]), and, on 2 lanes + 1 states,
+/// with the function over many states (one after the other; the last batch is a partial one).
+template <int lanes, class Batch, class Many>
+void check_batch(const char* name, Batch batch, Many many) {
+  const Spec* spec = dyngen::find_algorithm<Scalar>(name);
+  ASSERT_NE(spec, nullptr) << "the runtime has no algorithm " << name;
+  dyngen::Workspace<Scalar> ws(model);
+  Arrays runtime = sized(spec->outputs), mine = sized(spec->outputs);
+  auto run_runtime = [&](const Arrays& x) {
+    const std::vector<std::span<const Scalar>> in(x.begin(), x.end());
+    const std::vector<std::span<Scalar>> out(runtime.begin(), runtime.end());
+    spec->call(model, ws, in, out);
+  };
+  auto times = [](Arrays arrays, std::size_t n) {
+    for (std::vector<Scalar>& a : arrays) a.resize(a.size() * n);
+    return arrays;
+  };
+  Arrays x_lanes = times(sized(spec->inputs), lanes), y_lanes = times(sized(spec->outputs), lanes);
+  for (int first = 0; first < all_states; first += lanes) {
+    std::vector<Arrays> states;
+    for (int l = 0; l < lanes; ++l) {
+      states.push_back(make_inputs(*spec, (first + l) % all_states));
+      for (std::size_t k = 0; k < x_lanes.size(); ++k)
+        for (std::size_t i = 0; i < states[l][k].size(); ++i)
+          x_lanes[k][i * lanes + l] = states[l][k][i];
+    }
+    batch(x_lanes, y_lanes);
+    for (int l = 0; l < lanes; ++l) {
+      run_runtime(states[l]);
+      for (std::size_t k = 0; k < mine.size(); ++k) {
+        for (std::size_t i = 0; i < mine[k].size(); ++i) mine[k][i] = y_lanes[k][i * lanes + l];
+        ASSERT_TRUE(same_outputs(*spec, k, (first + l) % all_states, states[l], mine[k],
+                                 runtime[k]))
+            << "in lane " << l << " of " << lanes;
+      }
+    }
+  }
+  const int count = 2 * lanes + 1;
+  Arrays x_rows = times(sized(spec->inputs), count), y_rows = times(sized(spec->outputs), count);
+  std::vector<Arrays> states;
+  for (int s = 0; s < count; ++s) {
+    states.push_back(make_inputs(*spec, s));
+    for (std::size_t k = 0; k < x_rows.size(); ++k)
+      std::copy(states[s][k].begin(), states[s][k].end(),
+                x_rows[k].begin() + static_cast<std::ptrdiff_t>(s * states[s][k].size()));
+  }
+  many(count, x_rows, y_rows);
+  for (int s = 0; s < count; ++s) {
+    run_runtime(states[s]);
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      std::copy_n(y_rows[k].begin() + static_cast<std::ptrdiff_t>(s * mine[k].size()),
+                  mine[k].size(), mine[k].begin());
+      ASSERT_TRUE(same_outputs(*spec, k, s, states[s], mine[k], runtime[k]))
+          << "in the function over " << count << " states";
+    }
   }
 }
 
