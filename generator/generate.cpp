@@ -288,6 +288,94 @@ std::string frame_names_definition(const Model<double>& model, const Dialect& di
                      dialect.size("nframes"), frame_name_lines(model));
 }
 
+/// The NumPy shape of one state's entries of an array, as a C++ initialiser over the package's
+/// constants: {ur5::nframes, 3, 3} for a rotation per frame, {ur5::nv, ur5::nv} for M.
+std::string python_shape(const Extent& e, const std::string& ns) {
+  std::vector<std::string> dims;
+  if (e.per_frame) dims.push_back(ns + "::nframes");
+  if (e.count == 9)  // a rotation, row-major
+    dims.insert(dims.end(), {"3", "3"});
+  else if (e.count > 1)
+    dims.push_back(std::to_string(e.count));
+  if (e.size == Extent::Nq) dims.push_back(ns + "::nq");
+  if (e.size == Extent::Nv) dims.push_back(ns + "::nv");
+  if (e.size == Extent::NvNv) dims.insert(dims.end(), {ns + "::nv", ns + "::nv"});
+  std::string text;
+  for (const std::string& d : dims) text += (text.empty() ? "" : ", ") + d;
+  return "{" + text + "}";
+}
+
+/// The shapes of an array for one and for N states, in words for a docstring: "(nv,) or (N,
+/// nv)", "(nframes, 3, 3) or (N, nframes, 3, 3)".
+std::string python_shape_words(const Extent& e, const std::string& ns) {
+  std::string dims = python_shape(e, ns);
+  for (std::size_t at; (at = dims.find(ns + "::")) != std::string::npos;) dims.erase(at, ns.size() + 2);
+  dims = dims.substr(1, dims.size() - 2);
+  return fmt::format("({}{}) or (N, {})", dims, dims.find(',') == std::string::npos ? "," : "",
+                     dims);
+}
+
+/// One function's m.def in the Python module (python_function.cpp.in).
+std::string python_function(const AlgorithmSpec<double>& spec, const std::string& ns) {
+  std::string parameters, input_arguments, output_arguments, pointers, arguments, keywords, doc;
+  for (std::size_t k = 0; k < spec.inputs.size(); ++k) {
+    const ArraySpec& a = spec.inputs[k];
+    parameters += fmt::format("{}const py::array& {}", k ? ", " : "", a.name);
+    input_arguments += fmt::format("{}{{\"{}\", {}}}", k ? ", " : "", a.name,
+                                   python_shape(a.extent, ns));
+    pointers += fmt::format("{}x[{}]", k ? ", " : "", k);
+    arguments += fmt::format("{}&{}", k ? ", " : "", a.name);
+    keywords += fmt::format("{}py::arg(\"{}\")", k ? ", " : "", a.name);
+    doc += fmt::format("\n{}: {}, {}", a.name, python_shape_words(a.extent, ns), a.meaning);
+  }
+  doc += spec.outputs.size() == 1 ? "\nReturns" : "\nReturns a tuple of";
+  for (std::size_t k = 0; k < spec.outputs.size(); ++k) {
+    const ArraySpec& a = spec.outputs[k];
+    output_arguments += fmt::format("{}{{\"{}\", {}}}", k ? ", " : "", a.name,
+                                    python_shape(a.extent, ns));
+    pointers += fmt::format(", y[{}]", k);
+    doc += fmt::format("{}\n{}: {}, {}", k ? "," : ":", a.name, python_shape_words(a.extent, ns),
+                       a.meaning);
+  }
+  return fill("python_function.cpp.in",
+              {{"name", std::string(spec.name)},
+               {"namespace", ns},
+               {"parameters", parameters},
+               {"inputs", std::to_string(spec.inputs.size())},
+               {"outputs", std::to_string(spec.outputs.size())},
+               {"input_arguments", input_arguments},
+               {"output_arguments", output_arguments},
+               {"pointers", pointers},
+               {"arguments", arguments},
+               {"keywords", keywords},
+               {"doc", string_literal(std::string(spec.summary) + "\n" + doc)}});
+}
+
+/// The Python module's constants beyond nq, nv, lanes, dtype and joint_names.
+std::string python_attributes(const Model<double>& model, const std::string& ns) {
+  const Vec3<double>& g = model.gravity;
+  double mass = 0;
+  std::string quaternions;
+  for (int i = 0; i < model.nbodies; ++i) {
+    mass += model.I[i].m;
+    if (model.joint_type[i] == JointType::Free)
+      quaternions += fmt::format("{}{}", quaternions.empty() ? "" : ", ", model.q_index[i] + 3);
+  }
+  std::string text = fmt::format(
+      "    m.attr(\"gravity_acceleration\") = py::make_tuple({}, {}, {});  // m/s^2\n"
+      "    m.attr(\"total_mass\") = {};\n"
+      "    // q[k:k + 4] is a free joint's unit quaternion (w, x, y, z) for each k\n"
+      "    m.attr(\"quaternion_indices\") = py::make_tuple({});\n",
+      literal(g.x), literal(g.y), literal(g.z), literal(mass), quaternions);
+  if (!model.frames.empty())
+    text += fmt::format(
+        "    py::list frame_names;\n"
+        "    for (const char* name : {}::frame_names) frame_names.append(name);\n"
+        "    m.attr(\"frame_names\") = frame_names;\n",
+        ns);
+  return text;
+}
+
 /// Whether an algorithm has an array per frame.
 bool uses_frames(const Algorithm& a) {
   const AlgorithmSpec<double>& spec = algorithm_spec(a);
@@ -328,7 +416,8 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   const Dialect dialect{options.language, ns};
   const Dialect batch_dialect{Language::Cpp, ns, options.batch};
   const bool single = std::is_same_v<T, float>;
-  std::string declarations, definitions, cases, batch_declarations, batch_definitions;
+  std::string declarations, definitions, cases, batch_declarations, batch_definitions,
+      python_functions;
   bool calls_kernels = false;
   for (const Algorithm& a : options.algorithms) {
     step(fmt::format("tracing {} ({})", a, scalar));
@@ -429,6 +518,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     std::map<std::string, std::string> many = many_values(spec, scalar, batch_dialect);
     many.insert({{"summary", summary}, {"declaration", many_call}, {"batch", a + "_batch"}});
     batch_definitions += fill("many.cpp.in", many);
+    if (options.python) python_functions += python_function(spec, ns);
     cases += fill("batch_check.cpp.in",
                   {{"name", a}, {"namespace", ns}, {"call", ns + "::" + a}, {"arguments", arguments}});
   }
@@ -522,6 +612,17 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
       files.push_back({ns + "_batch.hpp", fill("batch.hpp.in", h)});
       files.push_back({ns + "_batch.cpp", fill("batch.cpp.in", cpp)});
     }
+    if (options.python)
+      files.push_back({ns + "_python.cpp",
+                       fill("python.cpp.in", {{"banner", code_banner},
+                                              {"name", ns},
+                                              {"namespace", ns},
+                                              {"robot", safe_text(robot.name)},
+                                              {"scalar", scalar},
+                                              {"dtype", single ? "float32" : "float64"},
+                                              {"lanes", std::to_string(options.batch)},
+                                              {"attributes", python_attributes(model, ns)},
+                                              {"functions", python_functions}})});
     // the runtime's own header, verbatim: both sides compute sin and cos with the same code
     files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
     if (calls_kernels)
@@ -563,6 +664,9 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                {"check_flag", dialect.c() ? "check_c_compiler_flag" : "check_cxx_compiler_flag"},
                {"extension", dialect.c() ? "c" : "cpp"},
                {"batch_source", batch_dialect.batch() ? fmt::format(" {}_batch.cpp", ns) : ""},
+               {"python_module",
+                options.python ? fill("python_module.cmake.in", {{"name", ns}, {"NAME", upper(ns)}})
+                               : ""},
                {"feature", dialect.c() ? "c_std_99" : "cxx_std_17"},
                {"language_flags", dialect.c() ? "" : " -fno-exceptions -fno-rtti"},
                {"enable_check_language",

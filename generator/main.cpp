@@ -214,6 +214,7 @@ struct CodeFlags {
   std::string algorithms = "rnea,crba,aba", scalar = "double", name, structure = "auto",
               target = "host", lang = "c++", jacobian_frame = "world";
   int batch = 0;
+  bool python = false;
 
   void add_to(CLI::App& app, bool firmware) {
     app.add_option("--algorithms", algorithms,
@@ -259,6 +260,10 @@ struct CodeFlags {
                      "with f in every lane; C++ only")
           ->check(CLI::IsMember({2, 4, 8, 16}))
           ->option_text("LANES");
+      app.add_flag("--python", python,
+                   "also write a Python module (pybind11, NumPy arrays of one or N states) over "
+                   "the batch functions, which the package's CMake builds; --batch defaults to "
+                   "4 for double and 8 for float");
       app.add_option("--target", target,
                      "the processor the code is for: dyngen warns where the scalar has no "
                      "hardware there (double on a Cortex-M4F or M33, whose FPU is "
@@ -271,9 +276,10 @@ struct CodeFlags {
 
   /// Checks --name and --batch before the robot is read (so that a mistake costs no time).
   void check_options() const {
-    if (batch > 0 && lang == "c")
-      throw InputError("--batch: batch functions are C++ (GCC's and clang's vector types); "
-                       "generate them with --lang c++");
+    if ((batch > 0 || python) && lang == "c")
+      throw InputError(fmt::format("{}: batch functions are C++ (GCC's and clang's vector types); "
+                                   "generate them with --lang c++",
+                                   batch > 0 ? "--batch" : "--python"));
     if (!name.empty() && !is_identifier(name))
       throw InputError(fmt::format(
           "--name {}: not usable as a C++ namespace, C prefix and file prefix (it must be "
@@ -297,7 +303,8 @@ struct CodeFlags {
                         : options.target == Target::Host ? Structure::Auto
                                                          : Structure::Shared;
     options.measure = options.target != Target::Host;
-    options.batch = batch;
+    options.python = python;
+    options.batch = batch > 0 || !python ? batch : options.single_precision ? 8 : 4;
     options.name = identifier(name.empty() ? robot.name : name);
     const Vec3<double>& g = robot.model.gravity;
     options.options_text =
@@ -305,7 +312,8 @@ struct CodeFlags {
                     "--gravity {},{},{} --name {}",
                     comma_list(options.algorithms), scalar, lang, structure, target, g.x, g.y,
                     g.z, options.name) +
-        (batch > 0 ? fmt::format(" --batch {}", batch) : "") +
+        (options.batch > 0 ? fmt::format(" --batch {}", options.batch) : "") +
+        (python ? " --python" : "") +
         model.text();
     return options;
   }

@@ -6,6 +6,7 @@
 #                                      (scripts/quickstart.sh)
 #   scripts/install_deps.sh report     main, and what dyngen report needs
 #   scripts/install_deps.sh package    main, and what cpack -G DEB needs
+#   scripts/install_deps.sh python     main, and what a package's Python module (--python) needs
 #   scripts/install_deps.sh bench      the tests' packages and valgrind (scripts/bench.sh,
 #                                      scripts/callgrind.sh)
 #   scripts/install_deps.sh fuzz       main, and clang with libFuzzer (scripts/fuzz.sh)
@@ -33,6 +34,10 @@ report=(
 firmware=(
   gcc-arm-none-eabi qemu-system-arm  # tests/firmware: Cortex-M builds run under qemu
 )
+python=(
+  pybind11-dev python3-dev python3-numpy  # the generated Python module (--python)
+  python3-pytest python3-matplotlib       # its tests, and examples/python's plot
+)
 peers=(
   libmujoco-dev libgl-dev  # tests/peers/mujoco; MuJoCo's CMake config needs OpenGL
   liborocos-kdl-dev libkdl-parser-dev  # tests/peers/kdl
@@ -43,8 +48,8 @@ jobs=()
 for arg in "$@"; do
   case $arg in
     --print) print=true ;;
-    main | report | package | test | bench | fuzz) jobs+=("$arg") ;;
-    *) echo "install_deps.sh: unknown job '$arg' (main, report, package, test, bench, fuzz)" >&2
+    main | report | package | python | test | bench | fuzz) jobs+=("$arg") ;;
+    *) echo "install_deps.sh: unknown job '$arg' (main, report, package, python, test, bench, fuzz)" >&2
        exit 1 ;;
   esac
 done
@@ -55,8 +60,9 @@ for job in "${jobs[@]}"; do
   case $job in
     report) packages+=("${report[@]}") ;;
     package) packages+=(dpkg-dev file) ;;  # CPack's dependency scan: dpkg-shlibdeps and file
-    test) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}") ;;
-    bench) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}" valgrind) ;;
+    python) packages+=("${python[@]}") ;;
+    test) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}" "${python[@]}") ;;
+    bench) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}" "${python[@]}" valgrind) ;;
     fuzz) packages+=(clang libclang-rt-dev) ;;
   esac
 done

@@ -440,6 +440,35 @@ TEST(CLanguage, RefusesAlgorithmsThatCallKernels) {
   }
 }
 
+// --batch prints the same program over lanes: the scalar code's statements, with each value a
+// lane and each input and trig entry read from the lane loaded before the first statement
+TEST(Batch, PrintsTheStatementsOfTheScalarCodeOverLanes) {
+  const Robot robot =
+      load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", floating_base());
+  GenerateOptions options;
+  options.name = "solo";
+  options.algorithms = {"rnea", "aba", "minv"};
+  options.batch = 4;
+  std::map<std::string, std::vector<std::string>> statements;
+  for (const GeneratedFile& f : generate(robot, options).files) {
+    if (f.name != "solo_dynamics.cpp" && f.name != "solo_batch.cpp") continue;
+    for (std::string line : lines_of(f.text)) {
+      if (f.name == "solo_dynamics.cpp") {
+        if (!line.starts_with("    const double ")) continue;
+        line.replace(0, 17, "    const lane ");
+        // q[3] -> q3, trig.sin_q[3] -> sin_q3
+        line = std::regex_replace(line, std::regex(R"(\b(q|v|a|tau)\[(\d+)\])"), "$1$2");
+        line = std::regex_replace(line, std::regex(R"(trig\.(sin|cos)_q\[(\d+)\])"), "$1_q$2");
+      } else if (!line.starts_with("    const lane ")) {
+        continue;
+      }
+      statements[f.name].push_back(line);
+    }
+  }
+  ASSERT_GT(statements["solo_dynamics.cpp"].size(), 1000u);
+  EXPECT_EQ(statements["solo_batch.cpp"], statements["solo_dynamics.cpp"]);
+}
+
 TEST(JointDescription, NamesAxisAlignedAndGeneralJoints) {
   Model<double> m;
   m.nbodies = 4;

@@ -1,0 +1,35 @@
+# ctest -P script: generates NAME's package with --python (dyngen DYNGEN, robot INPUT, OPTIONS),
+# builds it with its own CMakeLists.txt for PYTHON, runs test_module.py (in TESTS) with pytest on
+# its module, and, given EXAMPLE, that script on the module. SCRATCH is rewritten.
+file(REMOVE_RECURSE ${SCRATCH})
+string(TOUPPER ${NAME} upper)
+set(source ${SCRATCH}/package)
+set(binary ${SCRATCH}/build)
+foreach(step IN ITEMS generate configure build pytest example)
+  if(step STREQUAL "generate")
+    set(cmd ${DYNGEN} ${INPUT} -o ${source} --name ${NAME} --quiet --python ${OPTIONS})
+  elseif(step STREQUAL "configure")
+    set(cmd ${CMAKE_COMMAND} -S ${source} -B ${binary} -D${upper}_BUILD_CHECK=OFF
+            -DPython3_EXECUTABLE=${PYTHON})
+  elseif(step STREQUAL "build")
+    set(cmd ${CMAKE_COMMAND} --build ${binary})
+  elseif(step STREQUAL "pytest")
+    string(REPLACE ";" " " model_options "${MODEL_OPTIONS}")
+    set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} DYNGEN_MODULE=${NAME}_dynamics
+            DYNGEN=${DYNGEN} DYNGEN_ROBOT=${INPUT} "DYNGEN_ROBOT_OPTIONS=${model_options}"
+            MPLBACKEND=Agg ${PYTHON} -m pytest -q -p no:cacheprovider ${TESTS}/test_module.py)
+  elseif(EXAMPLE)
+    set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} ${PYTHON} ${EXAMPLE} ${NAME}_dynamics
+            --rollouts 32 --seconds 0.2 --plot ${SCRATCH}/energy.png)
+  else()
+    continue()
+  endif()
+  execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${step} failed:\n${out}")
+  endif()
+  message(STATUS "${step}:\n${out}")
+endforeach()
+if(EXAMPLE AND NOT EXISTS ${SCRATCH}/energy.png)
+  message(FATAL_ERROR "the example wrote no plot")
+endif()
