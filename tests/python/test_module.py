@@ -79,6 +79,22 @@ def test_threads_give_the_same_bits():
     assert np.array_equal(d.aba(q, v, tau, threads=2), d.aba(q, v, tau))
 
 
+def test_results_go_into_the_arrays_given_as_out():
+    q, v, a, tau = states(9)
+    qdd = np.empty((9, d.nv), dtype=d.dtype)
+    assert d.aba(q, v, tau, out=qdd) is qdd
+    assert np.array_equal(qdd, d.aba(q, v, tau))
+    dtau = (np.empty((9, d.nv, d.nv), dtype=d.dtype), np.empty((9, d.nv, d.nv), dtype=d.dtype))
+    result = d.rnea_derivatives(q, v, a, out=dtau)
+    assert result[0] is dtau[0] and result[1] is dtau[1]
+    for mine, new in zip(dtau, d.rnea_derivatives(q, v, a)):
+        assert np.array_equal(mine, new)
+    with pytest.raises(ValueError, match=r"out: qdd has shape \(8, "):
+        d.aba(q, v, tau, out=qdd[:8])
+    with pytest.raises(TypeError, match="a tuple of 2 arrays"):
+        d.rnea_derivatives(q, v, a, out=dtau[0])
+
+
 def test_no_states_give_empty_results():
     q, v, a, _ = states(0)
     assert d.rnea(q, v, a).shape == (0, d.nv)
