@@ -12,7 +12,7 @@ foreach(step IN ITEMS generate configure build pytest example)
     set(cmd ${CMAKE_COMMAND} -S ${source} -B ${binary} -D${upper}_BUILD_CHECK=OFF
             -DPython3_EXECUTABLE=${PYTHON})
   elseif(step STREQUAL "build")
-    set(cmd ${CMAKE_COMMAND} --build ${binary})
+    set(cmd ${CMAKE_COMMAND} --build ${binary} --parallel 2)
   elseif(step STREQUAL "pytest")
     string(REPLACE ";" " " model_options "${MODEL_OPTIONS}")
     set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} DYNGEN_MODULE=${NAME}_dynamics
