@@ -46,9 +46,11 @@ void count(OpCounts& c, Op op, long times = 1) {
   }
 }
 
-/// "    f(a, b, ...);" with the arguments wrapped before 100 columns under the first.
-std::string wrapped_call(const std::string& function, const std::vector<std::string>& arguments) {
-  const std::string head = "    " + function + "(";
+/// "    f(a, b, ...);" (indent first) with the arguments wrapped before 100 columns under the
+/// first.
+std::string wrapped_call(const std::string& function, const std::vector<std::string>& arguments,
+                         const std::string& indent = "    ") {
+  const std::string head = indent + function + "(";
   std::string text = head;
   std::size_t column = head.size();
   for (std::size_t k = 0; k < arguments.size(); ++k) {
@@ -540,14 +542,8 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
                                 array, size);
       arguments[first_array + j] = array + "_l";
     }
-    std::string call_text = wrapped_call(kernel, arguments), indented;
-    for (std::size_t pos = 0; pos < call_text.size();) {
-      const std::size_t end = call_text.find('\n', pos);
-      indented += "    " + call_text.substr(pos, end - pos + 1);
-      pos = end == std::string::npos ? call_text.size() : end + 1;
-    }
-    return text + "    for (int l = 0; l < lanes; ++l) {\n" + declare + copy_in + indented +
-           copy_out + "    }\n";
+    return text + "    for (int l = 0; l < lanes; ++l) {\n" + declare + copy_in +
+           wrapped_call(kernel, arguments, "        ") + copy_out + "    }\n";
   };
   std::vector<int> per_body(model.nbodies + 1, 0);
   const std::vector<std::string> prefixes = temporary_prefixes(model);
