@@ -8,7 +8,8 @@ recently freed frames first, so each copy is written while a random amount of ot
 held, which makes the copies' placements independent draws. Each copy runs twice,
 then twice more with its code moved to fresh pages by move_text.so (fresh pages are another
 draw, which can be slow too: the faster of the two counts). A copy that is slow in both of its
-runs and fast once its code is moved was slow because of where its code landed.
+runs and fast once its code is moved was slow because of where its code landed. Every run is
+pinned to one CPU: the two CPUs of the machine this was written on differed by 1.5 times.
 """
 
 import argparse
@@ -34,7 +35,8 @@ def run(binary, args, preload=None):
                    f"--benchmark_min_time={args.min_time}",
                    f"--benchmark_out={out.name}", "--benchmark_out_format=json"]
         result = subprocess.run(command, env=env, stdout=subprocess.DEVNULL,
-                                stderr=subprocess.PIPE, text=True)
+                                stderr=subprocess.PIPE, text=True,
+                                preexec_fn=lambda: os.sched_setaffinity(0, {args.cpu}))
         if result.returncode != 0:
             sys.exit(f"placement.py: {' '.join(command)} failed:\n{result.stderr}")
         if preload and "move_text: moved" not in result.stderr:
@@ -56,6 +58,9 @@ def main():
     parser.add_argument("--filter", required=True, help="--benchmark_filter of every run")
     parser.add_argument("--copies", type=int, default=10)
     parser.add_argument("--min-time", default="0.1", help="--benchmark_min_time of every run")
+    parser.add_argument("--cpu", type=int, default=0,
+                        help="the CPU every run is pinned to (CPUs of a virtual machine can "
+                             "differ in speed)")
     parser.add_argument("--out", required=True, help="the Markdown report to write")
     args = parser.parse_args()
     move_text = os.path.abspath(args.move_text)
@@ -102,7 +107,8 @@ def main():
         md.write(
             "# Placement: the same code in other physical pages\n\n"
             f"`scripts/placement.sh` ({os.path.basename(args.binary)}, "
-            f"`--benchmark_filter='{args.filter}'`, `--benchmark_min_time={args.min_time}`): "
+            f"`--benchmark_filter='{args.filter}'`, `--benchmark_min_time={args.min_time}`, "
+            f"every run on CPU {args.cpu}): "
             f"{len(copies)} copies of the binary, each the same instructions at the same "
             "virtual addresses in the page frames its file got when written; each ran twice "
             "(passes over all copies) and a copy's time is the faster of its two runs. CPU ns "
