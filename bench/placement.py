@@ -43,7 +43,11 @@ def run(binary, args, preload=None):
             sys.exit(f"placement.py: {preload} did not move the code:\n{result.stderr}")
         scale = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}
         times = {}
-        for b in json.load(open(out.name))["benchmarks"]:
+        text = open(out.name).read()
+        if not text.strip():
+            sys.exit(f"placement.py: {binary} wrote no results: is it a Google Benchmark program, "
+                     f"and does --benchmark_filter={args.filter!r} match anything?")
+        for b in json.loads(text)["benchmarks"]:
             if b.get("run_type", "iteration") == "iteration":
                 times[b["name"]] = b["cpu_time"] * scale[b["time_unit"]]
         if not times:
@@ -63,6 +67,9 @@ def main():
                              "differ in speed)")
     parser.add_argument("--out", required=True, help="the Markdown report to write")
     args = parser.parse_args()
+    for path in (args.binary, args.move_text):
+        if not os.path.isfile(path):
+            sys.exit(f"placement.py: {path}: no such file (scripts/placement.sh builds both)")
     move_text = os.path.abspath(args.move_text)
 
     with tempfile.TemporaryDirectory(prefix="dyngen-placement-") as directory:
