@@ -9,7 +9,7 @@ held, which makes the copies' placements independent draws. Each copy runs twice
 then twice more with its code moved to fresh pages by move_text.so (fresh pages are another
 draw, which can be slow too: the faster of the two counts). A copy that is slow in both of its
 runs and fast once its code is moved was slow because of where its code landed. Every run is
-pinned to one CPU: the two CPUs of the machine this was written on differed by 1.5 times.
+pinned to one CPU: the two CPUs of the machine this was written on differed by up to 1.7 times.
 """
 
 import argparse
