@@ -2,7 +2,8 @@
 # How much the generated code's speed depends on which physical pages hold it (bench/README.md,
 # "Placement"): builds dyngen_bench, dyngen_batch_bench and move_text.so in build-bench/, runs
 # bench/placement.py over COPIES copies of each (default 10; about 12 minutes in all) and writes
-# bench/results/placement_scalar.md (the generated scalar code of issue 16's table) and
+# bench/results/placement_scalar.md (the generated scalar code of issue 16's table, and the
+# snapped code of its two arms with rounded rotations) and
 # placement_batch.md (scalar, d4 and f8 code of issue 17's rows). Linux only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,7 +18,7 @@ mkdir -p bench/results
 bin=build-bench/bench
 python3 bench/placement.py --binary "$bin/dyngen_bench" --move-text "$bin/libdyngen_move_text.so" \
   --copies "$copies" --out bench/results/placement_scalar.md \
-  --filter '^(ur5|iiwa14|panda|solo12_floating|atlas|atlas_floating)/(rnea|crba|aba)/generated$'
+  --filter '^(ur5|iiwa14|panda|solo12|solo12_floating|anymal_c_floating|romeo|atlas|atlas_floating)/(rnea|crba|aba)/generated$|^(iiwa14|panda)/(rnea|crba|aba)/snapped$'
 python3 bench/placement.py --binary "$bin/dyngen_batch_bench" \
   --move-text "$bin/libdyngen_move_text.so" --copies "$copies" \
   --out bench/results/placement_batch.md \
