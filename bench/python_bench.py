@@ -1,8 +1,9 @@
 """Throughput of generated Python modules (dyngen --python): states per second of rnea, crba and
 aba through the module for N = 1, 16, 1024 and 65536 states a call (and 65536 writing into
 arrays given as out=, which spares the allocation and first touch of new ones), beside a Python
-loop that calls the module once per state (one-state arrays, the scalar function), and the time
-of a one-state call. States are random and change every call (a pool cycled through); each figure is
+loop that calls the module once per state (one-state arrays, the scalar function), the time
+of a one-state call, and the time of a call with no state (arrays of shape (0, n)): the call's
+cost without the dynamics, which is what the module adds to them. States are random and change every call (a pool cycled through); each figure is
 the median of 5 repetitions of at least 0.2 s.
 
 usage: PYTHONPATH=DIR[:DIR...] python3 bench/python_bench.py MODULE [MODULE...] [--out FILE.md]
@@ -62,7 +63,8 @@ def main():
     parser.add_argument("--out", help="also write the table to this Markdown file")
     args = parser.parse_args()
 
-    header = ("| module | function | one-state call, ns | Python loop, M states/s | "
+    header = ("| module | function | one-state call, ns | no-state call, ns | "
+              "Python loop, M states/s | "
               + " | ".join(f"N = {n}, M states/s" for n in COUNTS)
               + f" | N = {COUNTS[-1]}, out=, M states/s |")
     lines = [header, "|" + "---|" * (header.count("|") - 1)]
@@ -73,6 +75,8 @@ def main():
             used = 1 if function == "crba" else 3
             one_state = seconds_per_call(getattr(d, function),
                                          [tuple(a[0] for a in s[:used]) for s in pool(d, 1, 64)])
+            no_state = seconds_per_call(getattr(d, function),
+                                        [tuple(a[:0] for a in s[:used]) for s in pool(d, 1, 64)])
             states = pool(d, LOOP_STATES, 1)[0]
 
             def loop(q, v, x):
@@ -87,6 +91,7 @@ def main():
             out = call(*pool(d, n, 1)[0])
             rates.append(n / seconds_per_call(lambda q, v, x: call_into(q, v, x, out), pool(d, n, 1)))
             row = (f"| {name} ({d.dtype}, {d.lanes} lanes) | {function} | {one_state * 1e9:.0f} | "
+                   f"{no_state * 1e9:.0f} | "
                    + " | ".join(f"{r / 1e6:.2f}" for r in rates) + " |")
             print(row, flush=True)
             lines.append(row)
