@@ -38,55 +38,44 @@ TOLERANCE = 1.15  # the issue: its reference times hold on this kind of machine 
 CACHE_MISSES = 50  # a function that fits the cache misses under 10 times a call (callgrind.md)
 
 
-def table_rows(path):
-    """The rows of every Markdown table in path, as lists of stripped cells."""
+def first_table(path):
+    """The first Markdown table in path, as one {column: cell} per row (a repeated column name
+    keeps its first column)."""
     if not os.path.isfile(path):
-        sys.exit(f"pinocchio_targets.py: {path}: no such file (scripts/placement.sh and "
-                 "scripts/callgrind.sh write it)")
-    rows = []
+        sys.exit(f"pinocchio_targets.py: {path}: no such file (scripts/bench.sh, "
+                 "scripts/placement.sh and scripts/callgrind.sh write the three inputs)")
+    lines = []
     for line in open(path):
-        if line.startswith("|") and not line.startswith("|---"):
-            rows.append([cell.strip() for cell in line.strip().strip("|").split("|")])
-    return rows
+        if line.startswith("|"):
+            lines.append(line)
+        elif lines:
+            break
+    cells = [[c.strip() for c in line.strip().strip("|").split("|")] for line in lines
+             if not line.startswith("|---")]
+    header = cells[0]
+    first = {name: header.index(name) for name in header}
+    return [{name: row[k] for name, k in first.items()} for row in cells[1:]]
 
 
 def read_placement(path):
     """{(package, algorithm, implementation): median ns} from placement_scalar.md."""
-    rows = table_rows(path)
-    column = rows[0].index("median")
-    medians = {}
-    for row in rows[1:]:
-        package, algorithm, implementation = row[0].split("/")
-        medians[package, algorithm, implementation] = float(row[column])
-    return medians
+    return {tuple(row["benchmark"].split("/")): float(row["median"]) for row in first_table(path)}
 
 
 def read_benchmarks(path):
     """{(package, algorithm): (generated ns, snapped ns or None)} from benchmarks.md's timing
     table."""
-    rows = table_rows(path)
-    header = rows[0]
-    generated, snapped = header.index("generated"), header.index("snapped")
     times = {}
-    for row in rows[1:]:
-        if len(row) != len(header) or row[0] == header[0]:
-            break  # the next table
-        package = row[0] if row[1] == "fixed" else f"{row[0]}_{row[1]}"
-        times[package, row[3]] = (float(row[generated]),
-                                  None if row[snapped] == "-" else float(row[snapped]))
+    for row in first_table(path):
+        package = row["robot"] if row["base"] == "fixed" else f"{row['robot']}_{row['base']}"
+        times[package, row["algorithm"]] = (
+            float(row["generated"]), None if row["snapped"] == "-" else float(row["snapped"]))
     return times
 
 
 def read_callgrind(path):
     """{(package, algorithm): {column: value}} from callgrind.md's first table."""
-    rows = table_rows(path)
-    header = rows[0]
-    counts = {}
-    for row in rows[1:]:
-        if len(row) != len(header) or row[0] == header[0]:
-            break  # the next table
-        counts[row[0], row[1]] = dict(zip(header, row))
-    return counts
+    return {(row["package"], row["algorithm"]): row for row in first_table(path)}
 
 
 def main():
