@@ -4,8 +4,10 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <queue>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -244,6 +246,235 @@ std::string body_label(const Model<double>& model, int body) {
   return fmt::format("'{}' ({})", safe_text(model.body_name[body]), body);
 }
 
+/// Sections of limbs at the same depth that perform the same operations on other numbers (a
+/// quadruped's four upper legs) run in one block of vector statements: lane l of each does
+/// section l's operation on section l's operands, so each lane computes the bits of the
+/// unrolled code. An operation stays scalar where its lanes would read one another (a sum
+/// carried from limb to limb) or what the other lanes' results feed.
+struct LaneBlock {
+  std::vector<int> members;  // sections, one per lane
+  std::vector<bool> in_lanes;  // by position in a member's ops
+  int first = 0;             // the smallest node id of its lanes' operations
+};
+
+/// Where a node computed in lanes is: its block, lane and position.
+struct LaneSlot {
+  int block = -1, lane = 0, position = 0;
+};
+
+template <class T>
+std::vector<LaneBlock> plan_lane_blocks(const Program<T>& program, const Model<double>& model,
+                                        const std::vector<Section>& sections) {
+  const auto& nodes = program.graph.nodes;
+  const int n = static_cast<int>(nodes.size());
+  std::vector<int> section_of(n, -1), local(n, -1);
+  for (std::size_t s = 0; s < sections.size(); ++s)
+    for (std::size_t k = 0; k < sections[s].ops.size(); ++k) {
+      section_of[sections[s].ops[k]] = static_cast<int>(s);
+      local[sections[s].ops[k]] = static_cast<int>(k);
+    }
+  std::vector<std::vector<int>> consumers(n);
+  for (const Section& s : sections)
+    for (const int id : s.ops) program.graph.for_each_operand(id, [&](int x) {
+        consumers[x].push_back(id);
+      });
+  for (int id = 0; id < n; ++id)  // a kernel's results are read through its call
+    if (nodes[id].op == Op::Result) consumers[nodes[id].a].push_back(id);
+
+  // candidates: the same pass, depth and operations, operands inside the section by position
+  // and the others (constants, inputs, other sections' values) alike
+  std::vector<int> depth(static_cast<std::size_t>(model.nbodies), 0);
+  for (int i = 0; i < model.nbodies; ++i)
+    depth[i] = model.parent[i] < 0 ? 0 : depth[model.parent[i]] + 1;
+  std::map<std::tuple<int, int, std::string>, std::vector<int>> candidates;
+  for (std::size_t s = 0; s < sections.size(); ++s) {
+    const Section& section = sections[s];
+    if (section.body < 0 || section.ops.size() < min_lane_operations) continue;
+    std::string shape;
+    bool calls = false;
+    for (const int id : section.ops) {
+      calls = calls || nodes[id].op == Op::Call;
+      shape += fmt::format("{}", static_cast<int>(nodes[id].op));
+      program.graph.for_each_operand(id, [&](int x) {
+        shape += section_of[x] == static_cast<int>(s) ? fmt::format(" t{}", local[x]) : " o";
+      });
+      shape += ";";
+    }
+    if (!calls)
+      candidates[{static_cast<int>(section.pass), depth[section.body], shape}].push_back(
+          static_cast<int>(s));
+  }
+
+  // the width of SSE2's and NEON's vector registers, which every x86-64 and AArch64 processor
+  // has: 2 doubles or 4 floats (4 doubles in AVX's, emulated without it, ran slower than 2)
+  const std::size_t width = 16 / sizeof(T);
+  std::vector<LaneBlock> blocks;
+  std::vector<char> reached(n, 0);
+  for (auto& [key, members] : candidates) {
+    // lanes in the order of the bodies, whatever the pass, so that blocks hand on whole vectors
+    std::sort(members.begin(), members.end(),
+              [&](int a, int b) { return sections[a].body < sections[b].body; });
+    for (std::size_t begin = 0; members.size() - begin >= 2;) {
+      std::size_t lanes = 2;
+      while (lanes * 2 <= std::min(members.size() - begin, width)) lanes *= 2;
+      LaneBlock block;
+      block.members.assign(members.begin() + static_cast<long>(begin),
+                           members.begin() + static_cast<long>(begin + lanes));
+      begin += lanes;
+      const std::size_t length = sections[block.members[0]].ops.size();
+      auto member_of = [&](int x) {
+        return std::find(block.members.begin(), block.members.end(), section_of[x]) !=
+               block.members.end();
+      };
+      auto op_at = [&](std::size_t lane, std::size_t k) {
+        return sections[block.members[lane]].ops[k];
+      };
+      // in lanes where each operand is the same position of every lane's section, or outside
+      // every lane's section
+      block.in_lanes.assign(length, false);
+      for (std::size_t k = 0; k < length; ++k) {
+        bool ok = true;
+        for (int slot = 0; slot < 2 && ok; ++slot) {
+          const int x0 = slot == 0 ? nodes[op_at(0, k)].a : nodes[op_at(0, k)].b;
+          if (x0 < 0) continue;
+          const bool inside = section_of[x0] == block.members[0];
+          for (std::size_t l = 0; l < lanes && ok; ++l) {
+            const int x = slot == 0 ? nodes[op_at(l, k)].a : nodes[op_at(l, k)].b;
+            ok = inside ? section_of[x] == block.members[l] && local[x] == local[x0] &&
+                              block.in_lanes[static_cast<std::size_t>(local[x0])]
+                        : !member_of(x);
+          }
+        }
+        block.in_lanes[k] = ok;
+      }
+      // nothing in lanes may read what the block's lanes feed
+      std::fill(reached.begin(), reached.end(), 0);
+      std::vector<int> stack;
+      for (std::size_t k = 0; k < length; ++k)
+        if (block.in_lanes[k])
+          for (std::size_t l = 0; l < lanes; ++l) stack.push_back(op_at(l, k));
+      while (!stack.empty()) {
+        const int id = stack.back();
+        stack.pop_back();
+        for (const int c : consumers[id])
+          if (!reached[c]) reached[c] = 1, stack.push_back(c);
+      }
+      for (std::size_t k = 0; k < length; ++k) {
+        if (!block.in_lanes[k]) continue;
+        for (std::size_t l = 0; l < lanes; ++l)
+          program.graph.for_each_operand(op_at(l, k), [&](int x) {
+            if (member_of(x) ? !block.in_lanes[static_cast<std::size_t>(local[x])] : reached[x])
+              block.in_lanes[k] = false;
+          });
+      }
+      const long count = std::count(block.in_lanes.begin(), block.in_lanes.end(), true);
+      if (count < static_cast<long>(min_lane_operations)) continue;
+      block.first = n;
+      for (std::size_t k = 0; k < length; ++k)
+        if (block.in_lanes[k]) block.first = std::min(block.first, op_at(0, k));
+      blocks.push_back(std::move(block));
+    }
+  }
+  std::sort(blocks.begin(), blocks.end(),
+            [](const LaneBlock& a, const LaneBlock& b) { return a.first < b.first; });
+  return blocks;
+}
+
+/// The order of emission with lane blocks: each block's vector statements as one unit (-1 -
+/// block), every other operation as itself (its node id), in the trace's order as far as the
+/// blocks allow. Drops the blocks that would wait on one another in a cycle.
+template <class T>
+std::vector<int> schedule_lane_blocks(const Program<T>& program,
+                                      const std::vector<Section>& sections,
+                                      std::vector<LaneBlock>& blocks,
+                                      std::vector<LaneSlot>& slot) {
+  const auto& nodes = program.graph.nodes;
+  const int n = static_cast<int>(nodes.size());
+  for (;;) {
+    slot.assign(n, LaneSlot{});
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      for (std::size_t l = 0; l < blocks[b].members.size(); ++l)
+        for (std::size_t k = 0; k < blocks[b].in_lanes.size(); ++k)
+          if (blocks[b].in_lanes[k])
+            slot[sections[blocks[b].members[l]].ops[k]] = {static_cast<int>(b),
+                                                           static_cast<int>(l),
+                                                           static_cast<int>(k)};
+    // units: n + b for block b, the node id for an operation in place
+    const int units = n + static_cast<int>(blocks.size());
+    auto unit_of = [&](int id) {
+      if (nodes[id].op == Op::Result) id = nodes[id].a;
+      return slot[id].block >= 0 ? n + slot[id].block : id;
+    };
+    std::vector<std::vector<int>> after(units);
+    std::vector<int> waiting(units, 0), priority(units, -1);
+    std::vector<char> is_unit(units, 0);
+    for (const Section& s : sections)
+      for (const int id : s.ops) {
+        const int u = unit_of(id);
+        if (!is_unit[u]) is_unit[u] = 1, priority[u] = id;
+        priority[u] = std::min(priority[u], id);
+        program.graph.for_each_operand(id, [&](int x) {
+          const Op op = nodes[x].op;
+          if (op == Op::Const || op == Op::Input || op == Op::Sin || op == Op::Cos) return;
+          const int v = unit_of(x);
+          if (v != u) after[v].push_back(u), ++waiting[u];
+        });
+      }
+    std::priority_queue<std::pair<int, int>, std::vector<std::pair<int, int>>,
+                        std::greater<>>
+        ready;
+    for (int u = 0; u < units; ++u)
+      if (is_unit[u] && waiting[u] == 0) ready.push({priority[u], u});
+    std::vector<int> order;
+    while (!ready.empty()) {
+      const int u = ready.top().second;
+      ready.pop();
+      order.push_back(u >= n ? -1 - (u - n) : u);
+      for (const int v : after[u])
+        if (--waiting[v] == 0) ready.push({priority[v], v});
+    }
+    int stuck = -1;
+    for (int b = static_cast<int>(blocks.size()) - 1; b >= 0 && stuck < 0; --b)
+      if (waiting[n + b] > 0) stuck = b;
+    if (stuck < 0) return order;
+    blocks.erase(blocks.begin() + stuck);
+  }
+}
+
+/// The vectors a block fills from separate values (its lanes reading values that are neither
+/// constants nor the lanes of one vector), each counted once.
+template <class T>
+long lane_fills(const Program<T>& program, const std::vector<Section>& sections,
+                const std::vector<LaneBlock>& blocks, const std::vector<LaneSlot>& slot,
+                std::size_t b) {
+  const auto& nodes = program.graph.nodes;
+  const LaneBlock& block = blocks[b];
+  const std::size_t width = block.members.size();
+  std::set<std::vector<int>> fills;
+  for (std::size_t k = 0; k < block.in_lanes.size(); ++k) {
+    if (!block.in_lanes[k]) continue;
+    for (const bool second : {false, true}) {
+      std::vector<int> x;
+      for (std::size_t l = 0; l < width; ++l) {
+        const Node<T>& n = nodes[sections[block.members[l]].ops[k]];
+        x.push_back(second ? n.b : n.a);
+      }
+      if (x[0] < 0) continue;
+      bool constant = true, whole = slot[x[0]].block >= 0 &&
+                                    blocks[static_cast<std::size_t>(slot[x[0]].block)]
+                                            .members.size() == width;
+      for (std::size_t l = 0; l < width; ++l) {
+        constant = constant && nodes[x[l]].op == Op::Const;
+        whole = whole && slot[x[l]].block == slot[x[0]].block &&
+                slot[x[l]].lane == static_cast<int>(l) &&
+                slot[x[l]].position == slot[x[0]].position;
+      }
+      if (!constant && !whole) fills.insert(x);
+    }
+  }
+  return static_cast<long>(fills.size());
+}
+
 }  // namespace
 
 template <class T>
@@ -314,10 +545,34 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   // links) run one function over a table of their constants; the operations and their order
   // are those of the unrolled code, so the bits are too.
   std::vector<Section> sections = sections_of(program, is_op);
-  std::vector<std::vector<int>> groups;
+  std::vector<LaneBlock> blocks;
+  std::vector<LaneSlot> slot;
+  std::vector<int> order;  // of emission, with lane blocks (schedule_lane_blocks)
   const long operations = std::count(is_op.begin(), is_op.end(), true);
-  if (structure == Structure::Shared ||
-      (structure == Structure::Auto && operations >= min_shared_function_operations)) {
+  // Auto: lanes where limbs repeat, up to max_lane_function_operations; else shared from
+  // min_shared_function_operations, unrolled below
+  bool lanes = !dialect.c() && !dialect.batch() &&
+               (structure == Structure::Lanes ||
+                (structure == Structure::Auto && operations < max_lane_function_operations));
+  if (lanes) {
+    blocks = plan_lane_blocks(program, model, sections);
+    order = schedule_lane_blocks(program, sections, blocks, slot);
+    // filling a vector costs about an instruction a lane, as an operation does: a block must
+    // save at least twice what it fills
+    std::vector<LaneBlock> paying;
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      if (std::count(blocks[b].in_lanes.begin(), blocks[b].in_lanes.end(), true) >=
+          2 * lane_fills(program, sections, blocks, slot, b))
+        paying.push_back(blocks[b]);
+    if (paying.size() < blocks.size()) {
+      blocks = std::move(paying);
+      order = schedule_lane_blocks(program, sections, blocks, slot);
+    }
+    lanes = structure == Structure::Lanes || !blocks.empty();
+  }
+  std::vector<std::vector<int>> groups;
+  if (!lanes && (structure == Structure::Shared ||
+                 (structure == Structure::Auto && operations >= min_shared_function_operations))) {
     std::map<std::string, std::vector<int>> by_shape;
     for (std::size_t s = 0; s < sections.size(); ++s)
       if (sections[s].body >= 0) by_shape[sections[s].shape].push_back(static_cast<int>(s));
@@ -377,15 +632,18 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     for (int l = 1; l < dialect.lanes; ++l) copies += ", " + operand(id);
     return "lane{" + copies + "}";
   };
-  auto expression = [&](const Node<T>& n, auto&& arg) {
-    switch (n.op) {
-      case Op::Neg: return "-" + arg(n.a);
-      case Op::Add: return arg(n.a) + " + " + arg(n.b);
-      case Op::Sub: return arg(n.a) + " - " + arg(n.b);
-      case Op::Mul: return arg(n.a) + " * " + arg(n.b);
-      case Op::Div: return arg(n.a) + " / " + arg(n.b);
+  auto apply = [](Op op, const std::string& a, const std::string& b) {
+    switch (op) {
+      case Op::Neg: return "-" + a;
+      case Op::Add: return a + " + " + b;
+      case Op::Sub: return a + " - " + b;
+      case Op::Mul: return a + " * " + b;
+      case Op::Div: return a + " / " + b;
       default: return std::string();
     }
+  };
+  auto expression = [&](const Node<T>& n, auto&& arg) {
+    return apply(n.op, arg(n.a), n.b >= 0 ? arg(n.b) : std::string());
   };
 
   // the shared functions, each with its constant table
@@ -547,7 +805,79 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   };
   std::vector<int> per_body(model.nbodies + 1, 0);
   const std::vector<std::string> prefixes = temporary_prefixes(model);
+  auto statement = [&](int id) {
+    const Node<T>& n = nodes[id];
+    if (n.op == Op::Call) return kernel_call(n.a);
+    name[id] = fmt::format("{}_{}", prefixes[n.body + 1], per_body[n.body + 1]++);
+    return fmt::format("    const {} {} = {};\n", type, name[id], expression(n, operand));
+  };
+  if (lanes) {
+    std::vector<int> section_of(nodes.size(), -1);
+    for (std::size_t s = 0; s < sections.size(); ++s)
+      for (const int id : sections[s].ops) section_of[id] = static_cast<int>(s);
+    std::vector<std::string> vector_name(nodes.size());
+    std::set<std::size_t> widths;
+    for (const LaneBlock& block : blocks) widths.insert(block.members.size());
+    for (const std::size_t width : widths)
+      out += fmt::format("    typedef {0} lanes{1} __attribute__((vector_size({1} * sizeof({0}))));\n",
+                         scalar, width);
+    if (!widths.empty()) out += "\n";
+    int current = -1;  // the section whose header was printed last; -2 a block
+    for (const int unit : order) {
+      if (unit >= 0) {
+        const int s = section_of[unit];
+        if (s != current)
+          out += (current == -1 ? "" : "\n") +
+                 section_header<T>(model, sections[s].body, sections[s].pass);
+        current = s;
+        out += statement(unit);
+        continue;
+      }
+      const LaneBlock& block = blocks[static_cast<std::size_t>(-1 - unit)];
+      const std::size_t width = block.members.size();
+      const std::string vector = fmt::format("lanes{}", width);
+      out += fmt::format("{}    // ---- {} lanes; {}:\n", current == -1 ? "" : "\n", width,
+                         pass_name(sections[block.members[0]].pass));
+      current = -2;
+      for (const int member : block.members) {
+        const int body = sections[member].body;
+        out += fmt::format("    //      link {}, joint '{}': {}\n", body_label(model, body),
+                           safe_text(model.joint_name[body]), joint_description(model, body));
+      }
+      const int body = sections[block.members[0]].body;
+      for (std::size_t k = 0; k < block.in_lanes.size(); ++k) {
+        if (!block.in_lanes[k]) continue;
+        auto at = [&](std::size_t l) { return sections[block.members[l]].ops[k]; };
+        // an operand: a block's vector where lane l reads lane l of it, else its lanes filled
+        auto lanes_of = [&](bool second) {
+          std::vector<int> x;
+          for (std::size_t l = 0; l < width; ++l) x.push_back(second ? nodes[at(l)].b : nodes[at(l)].a);
+          bool whole = slot[x[0]].block >= 0 &&
+                       blocks[static_cast<std::size_t>(slot[x[0]].block)].members.size() == width;
+          for (std::size_t l = 0; l < width && whole; ++l)
+            whole = slot[x[l]].block == slot[x[0]].block && slot[x[l]].lane == static_cast<int>(l) &&
+                    slot[x[l]].position == slot[x[0]].position;
+          if (whole) return vector_name[x[0]];
+          std::string items;
+          for (std::size_t l = 0; l < width; ++l) items += (l ? ", " : "") + operand(x[l]);
+          return vector + "{" + items + "}";
+        };
+        const Node<T>& n = nodes[at(0)];
+        const std::string v = fmt::format("{}_l{}", prefixes[body + 1], per_body[body + 1]++);
+        out += fmt::format("    const {} {} = {};\n", vector, v,
+                           apply(n.op, lanes_of(false), n.b >= 0 ? lanes_of(true) : std::string()));
+        for (std::size_t l = 0; l < width; ++l) {
+          vector_name[at(l)] = v;
+          name[at(l)] = fmt::format("{}[{}]", v, l);
+        }
+        code.lane_operations += static_cast<long>(width);
+      }
+      ++code.lane_blocks;
+    }
+    out += "\n";
+  }
   for (const Section& s : sections) {
+    if (lanes) break;
     out += section_header<T>(model, s.body, s.pass);
     if (s.group >= 0) {
       std::string x;
@@ -559,15 +889,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
                          type, x, prefix, s.group, k, s.w);
       continue;
     }
-    for (const int id : s.ops) {
-      const Node<T>& n = nodes[id];
-      if (n.op == Op::Call) {
-        out += kernel_call(n.a);
-        continue;
-      }
-      name[id] = fmt::format("{}_{}", prefixes[n.body + 1], per_body[n.body + 1]++);
-      out += fmt::format("    const {} {} = {};\n", type, name[id], expression(n, operand));
-    }
+    for (const int id : s.ops) out += statement(id);
     out += "\n";
   }
   out += "    // ---- outputs\n";

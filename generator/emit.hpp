@@ -35,10 +35,14 @@ std::string literal(float value);
 /// How a function's code is laid out. Unrolled: every link's sections in place, one statement
 /// per operation. Shared: sections of the same shape (the same operations on other
 /// constants, as a left and a right leg, or a chain's links) call one function with a table of
-/// their constants, so the code grows with the number of shapes rather than links. Auto:
-/// shared in a function of at least min_shared_function_operations, unrolled below. All
-/// perform the same operations in the same order.
-enum class Structure { Unrolled, Shared, Auto };
+/// their constants, so the code grows with the number of shapes rather than links. Lanes (C++
+/// scalar code): unrolled, with the sections of limbs at the same depth that perform the same
+/// operations (a quadruped's legs, a humanoid's left and right arm) computed together in
+/// vector statements, 2 doubles or 4 floats to a statement. Auto: lanes where a function's
+/// limbs repeat and it has fewer than max_lane_function_operations; else shared in a function
+/// of at least min_shared_function_operations, unrolled below. All perform the same
+/// operations, so the bits are the same.
+enum class Structure { Unrolled, Shared, Auto, Lanes };
 
 /// Below this many operations a function's straight-line code (about 12 bytes of x86-64 per
 /// operation) fits the instruction cache and sharing only adds calls and gathers: in the
@@ -51,6 +55,15 @@ inline constexpr long min_shared_function_operations = 1800;
 /// inputs and calling costs about as much as a few dozen operations (docs/performance.md,
 /// "Code structure").
 inline constexpr std::size_t min_shared_operations = 40;
+
+/// Above this many operations Structure::Auto shares rather than computes in lanes: in the
+/// benchmarks lanes ran faster than shared functions for atlas's functions of up to 10,604
+/// operations (docs/performance.md, "Code structure"); bigger ones were not measured.
+inline constexpr long max_lane_function_operations = 12000;
+
+/// Sections shorter than this, and blocks of fewer operations in lanes, stay scalar under
+/// Structure::Lanes: filling a vector's lanes costs about as much as an operation in each.
+inline constexpr std::size_t min_lane_operations = 8;
 
 /// The language the code is printed in.
 enum class Language { Cpp, C };
@@ -92,6 +105,8 @@ struct EmittedCode {
   int sections = 0;          // runs of one body's operations in one pass
   int shared_sections = 0;   // of them, computed by a shared function
   int shared_functions = 0;
+  int lane_blocks = 0;       // blocks of sections computed in vector lanes (Structure::Lanes)
+  long lane_operations = 0;  // scalar operations done in them, every lane counted
   std::vector<bool> angles;  // by q index: whether the body reads sin or cos of that angle
 };
 

@@ -99,7 +99,11 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
   for (const FunctionCounts& c : counts) {
     text += fmt::format("\n  {}\n    generated: {}\n    runtime:   {}", c.algorithm,
                         to_string(c.generated), to_string(c.runtime));
-    if (options.structure != Structure::Unrolled)
+    if (options.structure == Structure::Lanes || c.lane_blocks > 0)
+      text += fmt::format("\n    {} of {} operations in {} blocks of vector lanes",
+                          c.lane_operations, c.generated.total() - c.generated.sin - c.generated.cos,
+                          c.lane_blocks);
+    else if (options.structure != Structure::Unrolled)
       text += fmt::format("\n    {} of {} link sections in {} shared functions",
                           c.shared_sections, c.sections, c.shared_functions);
   }
@@ -447,7 +451,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     const EmittedCode code = emit_code(program, model, options.structure, dialect);
     const std::string trig_fill = emit_trig_fill(model, single, code.angles, dialect);
     result.counts.push_back({a, generated, runtime, code.sections, code.shared_sections,
-                             code.shared_functions});
+                             code.shared_functions, code.lane_blocks, code.lane_operations});
 
     const AlgorithmSpec<double>& spec = algorithm_spec(a);
     std::string trig_arguments, arguments;
@@ -547,8 +551,13 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   const std::string sincos = single ? "dyngen_sincosf" : "dyngen_sincos";
   const std::string structure =
       options.structure == Structure::Shared ? "repeated link sections call shared functions"
-      : options.structure == Structure::Auto
+      : options.structure == Structure::Auto && dialect.c()
           ? "big functions' repeated link sections call shared functions"
+      : options.structure == Structure::Auto
+          ? "repeated limbs computed in vector lanes, other big functions' repeated link "
+            "sections call shared functions"
+      : options.structure == Structure::Lanes && !dialect.c()
+          ? "repeated limbs computed in vector lanes"
           : "every link section in place";
   const std::string header = ns + (dialect.c() ? "_dynamics.h" : "_dynamics.hpp");
   const std::string source = ns + (dialect.c() ? "_dynamics.c" : "_dynamics.cpp");

@@ -59,6 +59,8 @@ struct FunctionCounts {
   OpCounts generated;  // in the emitted function
   OpCounts runtime;    // what runtime<T> performs for the same call
   int sections = 0, shared_sections = 0, shared_functions = 0;  // EmittedCode's
+  int lane_blocks = 0;
+  long lane_operations = 0;
 };
 
 struct Generated {

@@ -243,9 +243,13 @@ struct CodeFlags {
                                "code, the same operations and bits); unrolled: every link's "
                                "code in place; auto: on the host, shared in functions of {} "
                                "operations or more and unrolled below (where the code fits the "
-                               "instruction cache), on a Cortex-M shared (flash)",
+                               "instruction cache), on a Cortex-M shared (flash); lanes (C++): "
+                               "unrolled, with the sections of limbs at the same depth that do "
+                               "the same operations (a quadruped's legs, a humanoid's left and "
+                               "right limbs) computed together in vector statements of 2 or 4 "
+                               "lanes, the same bits",
                                min_shared_function_operations))
-        ->check(CLI::IsMember({"auto", "unrolled", "shared"}))
+        ->check(CLI::IsMember({"auto", "unrolled", "shared", "lanes"}))
         ->capture_default_str();
     if (firmware) {
       target = "cortex-m4f";
@@ -300,6 +304,7 @@ struct CodeFlags {
         std::begin(target_names));
     options.structure = structure == "shared"     ? Structure::Shared
                         : structure == "unrolled" ? Structure::Unrolled
+                        : structure == "lanes"    ? Structure::Lanes
                         : options.target == Target::Host ? Structure::Auto
                                                          : Structure::Shared;
     options.measure = options.target != Target::Host;

@@ -355,21 +355,104 @@ TEST(SharedStructure, RunsEveryOperationOfTheUnrolledCodeOnce) {
   });
 }
 
-// Auto: code that fits the instruction cache stays in place; bigger code is shared
-TEST(SharedStructure, AutoSharesOnlyBigFunctions) {
-  int big_functions = 0, small_functions = 0;
+// ---- the lane structure
+
+/// The operations one call of lane code performs: each scalar statement one, each vector
+/// statement one per lane.
+long lane_statements_run(const EmittedCode& code, const std::string& scalar = "double") {
+  const std::regex statement("^    const " + scalar + R"( \w+ = .+;$)");
+  const std::regex vector(R"(^    const lanes(\d) \w+ = .+;$)");
+  long run = 0;
+  for (const std::string& line : lines_of(code.body)) {
+    std::smatch m;
+    if (std::regex_match(line, statement)) ++run;
+    else if (std::regex_match(line, m, vector)) run += std::stol(m[1]);
+  }
+  return run;
+}
+
+TEST(LaneStructure, RunsEveryOperationOfTheUnrolledCodeOnce) {
+  for_each_solo12_function([](const Robot& robot, const Program<double>& program,
+                               const std::string& what) {
+    const EmittedCode lanes = emit_code(program, robot.model, Structure::Lanes);
+    const OpCounts ops = count_ops(program);
+    EXPECT_EQ(lane_statements_run(lanes), ops.total() - ops.sin - ops.cos) << what;
+    EXPECT_TRUE(lanes.helpers.empty()) << what;
+    // four legs of the same build: two legs to a statement
+    EXPECT_GT(lanes.lane_blocks, 0) << what;
+    const auto statements = [](const std::string& body) {
+      long count = 0;
+      for (const std::string& line : lines_of(body)) count += line.starts_with("    const ");
+      return count;
+    };
+    EXPECT_EQ(statements(lanes.body) + lanes.lane_operations / 2,
+              statements(emit_code(program, robot.model, Structure::Unrolled).body))
+        << what;
+    EXPECT_NE(lanes.body.find("typedef double lanes2 __attribute__((vector_size(2 * "
+                              "sizeof(double))));"),
+              std::string::npos)
+        << what;
+  });
+}
+
+TEST(LaneStructure, FourFloatsToAStatement) {
+  const Robot robot =
+      load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", LoadOptions{});
+  const Program<float> program = trace<float>("rnea", robot.model);
+  const EmittedCode lanes = emit_code(program, robot.model, Structure::Lanes);
+  const OpCounts ops = count_ops(program);
+  EXPECT_EQ(lane_statements_run(lanes, "float"), ops.total() - ops.sin - ops.cos);
+  EXPECT_NE(lanes.body.find("const lanes4 "), std::string::npos);
+}
+
+// a chain has one link at each depth: nothing to put in lanes, the code is the unrolled code
+TEST(LaneStructure, AChainIsUnrolled) {
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/ur5.urdf", LoadOptions{});
+  for (const Algorithm a : {"rnea", "crba", "aba", "centroidal"}) {
+    const Program<double> program = trace<double>(a, robot.model);
+    const EmittedCode lanes = emit_code(program, robot.model, Structure::Lanes);
+    EXPECT_EQ(lanes.lane_blocks, 0) << a;
+    EXPECT_EQ(lanes.body, emit_code(program, robot.model, Structure::Unrolled).body) << a;
+  }
+}
+
+// C and batch code have no lanes of their own: Lanes prints them unrolled
+TEST(LaneStructure, OnlyInCppScalarCode) {
+  const Robot robot =
+      load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", LoadOptions{});
+  const Program<double> program = trace<double>("rnea", robot.model);
+  for (const Dialect& dialect : {Dialect{Language::C, "solo", 0}, Dialect{Language::Cpp, "solo", 4}}) {
+    const EmittedCode lanes = emit_code(program, robot.model, Structure::Lanes, dialect);
+    EXPECT_EQ(lanes.lane_blocks, 0);
+    EXPECT_EQ(lanes.body, emit_code(program, robot.model, Structure::Unrolled, dialect).body);
+  }
+}
+
+// Auto: lanes where limbs repeat; elsewhere code that fits the instruction cache stays in place
+// and bigger code is shared
+TEST(Structures, AutoPutsLimbsInLanesAndSharesOnlyBigFunctions) {
   for_each_solo12_function([&](const Robot& robot, const Program<double>& program,
-                                const std::string& what) {
+                               const std::string& what) {
+    const EmittedCode automatic = emit_code(program, robot.model, Structure::Auto);
+    EXPECT_GT(automatic.lane_blocks, 0) << what;
+    EXPECT_EQ(automatic.body, emit_code(program, robot.model, Structure::Lanes).body) << what;
+  });
+  // an arm's passes have one link at each depth (its CRBA, which carries several columns of M
+  // through each joint, has lanes)
+  int big_functions = 0, small_functions = 0;
+  const Robot arm = load_robot(std::string(DYNGEN_TEST_MODELS) + "/iiwa14.urdf", LoadOptions{});
+  for (const Algorithm a : {"rnea", "aba"}) {
+    const Program<double> program = trace<double>(a, arm.model);
     const OpCounts ops = count_ops(program);  // sin and cos come from joint_trig
     const bool big = ops.total() - ops.sin - ops.cos >= min_shared_function_operations;
-    const EmittedCode automatic = emit_code(program, robot.model, Structure::Auto);
+    const EmittedCode automatic = emit_code(program, arm.model, Structure::Auto);
     const EmittedCode chosen =
-        emit_code(program, robot.model, big ? Structure::Shared : Structure::Unrolled);
-    EXPECT_EQ(automatic.body, chosen.body) << what;
-    EXPECT_EQ(automatic.helpers, chosen.helpers) << what;
-    EXPECT_EQ(automatic.shared_functions > 0, big) << what;
+        emit_code(program, arm.model, big ? Structure::Shared : Structure::Unrolled);
+    EXPECT_EQ(automatic.body, chosen.body) << a;
+    EXPECT_EQ(automatic.helpers, chosen.helpers) << a;
+    EXPECT_EQ(automatic.shared_functions > 0, big) << a;
     ++(big ? big_functions : small_functions);
-  });
+  }
   EXPECT_GT(big_functions, 0);
   EXPECT_GT(small_functions, 0);
 }
@@ -406,6 +489,7 @@ TEST(CLanguage, PrintsTheStatementsOfTheCppCode) {
     options.name = "solo";
     options.language = language;
     options.algorithms = {"rnea", "aba", "minv"};
+    options.structure = Structure::Shared;  // Auto has lanes in C++ alone
     for (const GeneratedFile& f : generate(robot, options).files) {
       if (!f.name.starts_with("solo_dynamics.c")) continue;
       for (std::string line : lines_of(f.text)) {
@@ -448,6 +532,7 @@ TEST(Batch, PrintsTheStatementsOfTheScalarCodeOverLanes) {
   GenerateOptions options;
   options.name = "solo";
   options.algorithms = {"rnea", "aba", "minv"};
+  options.structure = Structure::Shared;  // Auto has lanes in the scalar code alone
   options.batch = 4;
   std::map<std::string, std::vector<std::string>> statements;
   for (const GeneratedFile& f : generate(robot, options).files) {
