@@ -56,10 +56,12 @@ inline constexpr long min_shared_function_operations = 1800;
 /// "Code structure").
 inline constexpr std::size_t min_shared_operations = 40;
 
-/// Above this many operations Structure::Auto shares rather than computes in lanes: in the
-/// benchmarks lanes ran faster than shared functions for atlas's functions of up to 10,604
-/// operations (docs/performance.md, "Code structure"); bigger ones were not measured.
-inline constexpr long max_lane_function_operations = 12000;
+/// Above this many operations Structure::Auto shares rather than computes in lanes. Below it
+/// lanes ran faster than shared functions in every function measured, up to solo12 floating's
+/// aba_derivatives (35,980 operations, 1.24 times); atlas floating's derivatives (48,767 and
+/// 178,388, with kernel calls) took 1.6 times as long to compile in lanes, past the minute
+/// that issue 13 allows (docs/performance.md, "Code structure").
+inline constexpr long max_lane_function_operations = 40000;
 
 /// Sections shorter than this, and blocks of fewer operations in lanes, stay scalar under
 /// Structure::Lanes: filling a vector's lanes costs about as much as an operation in each.

@@ -1,6 +1,7 @@
 # ctest -P script: generates NAME's package with --python (dyngen DYNGEN, robot INPUT, OPTIONS),
 # builds it with its own CMakeLists.txt for PYTHON, runs test_module.py (in TESTS) with pytest on
-# its module, and, given EXAMPLE, that script on the module. SCRATCH is rewritten.
+# its module, and, given EXAMPLE, that script on the module. SCRATCH is rewritten; OPTIMIZE, if
+# set, replaces the package's Release flags' -O3.
 file(REMOVE_RECURSE ${SCRATCH})
 string(TOUPPER ${NAME} upper)
 set(source ${SCRATCH}/package)
@@ -11,6 +12,9 @@ foreach(step IN ITEMS generate configure build pytest example)
   elseif(step STREQUAL "configure")
     set(cmd ${CMAKE_COMMAND} -S ${source} -B ${binary} -D${upper}_BUILD_CHECK=OFF
             -DPython3_EXECUTABLE=${PYTHON})
+    if(OPTIMIZE)
+      list(APPEND cmd "-DCMAKE_CXX_FLAGS_RELEASE=${OPTIMIZE} -DNDEBUG")
+    endif()
   elseif(step STREQUAL "build")
     set(cmd ${CMAKE_COMMAND} --build ${binary} --parallel 2)
   elseif(step STREQUAL "pytest")
