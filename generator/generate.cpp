@@ -549,16 +549,17 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   const std::string gravity = fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z));
 
   const std::string sincos = single ? "dyngen_sincosf" : "dyngen_sincos";
+  const bool lanes = std::any_of(result.counts.begin(), result.counts.end(),
+                                 [](const FunctionCounts& c) { return c.lane_blocks > 0; });
   const std::string structure =
-      options.structure == Structure::Shared ? "repeated link sections call shared functions"
-      : options.structure == Structure::Auto && dialect.c()
-          ? "big functions' repeated link sections call shared functions"
-      : options.structure == Structure::Auto
-          ? "repeated limbs computed in vector lanes, other big functions' repeated link "
-            "sections call shared functions"
-      : options.structure == Structure::Lanes && !dialect.c()
-          ? "repeated limbs computed in vector lanes"
-          : "every link section in place";
+      (lanes ? std::string("repeated limbs computed in lanes of GCC's and clang's vector types") +
+                   (options.structure == Structure::Auto ? ", other " : "")
+             : std::string()) +
+      (options.structure == Structure::Shared ? "repeated link sections call shared functions"
+       : options.structure == Structure::Auto
+           ? "big functions' repeated link sections call shared functions"
+       : lanes ? ""
+               : "every link section in place");
   const std::string header = ns + (dialect.c() ? "_dynamics.h" : "_dynamics.hpp");
   const std::string source = ns + (dialect.c() ? "_dynamics.c" : "_dynamics.cpp");
   // the package's files under a banner

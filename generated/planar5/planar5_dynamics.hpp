@@ -22,7 +22,7 @@
 #pragma once
 
 /// Dynamics of robot 'planar5', specialised by dyngen.
-/// No loops over links (repeated limbs computed in vector lanes, other big functions' repeated link sections call shared functions), no heap, no exceptions,
+/// No loops over links (big functions' repeated link sections call shared functions), no heap, no exceptions,
 /// no standard library and no dependency beyond dyngen_sincos.h (which comes with it, as does
 /// dyngen_kernels.hpp where a function calls a kernel), no state (thread-safe); C++17 or later.
 ///
