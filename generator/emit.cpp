@@ -441,35 +441,48 @@ std::vector<int> schedule_lane_blocks(const Program<T>& program,
   }
 }
 
+/// The first or second operand of the block's operation at position k, by lane.
+template <class T>
+std::vector<int> lane_operands(const Program<T>& program, const std::vector<Section>& sections,
+                               const LaneBlock& block, std::size_t k, bool second) {
+  std::vector<int> x;
+  for (const int member : block.members) {
+    const Node<T>& n = program.graph.nodes[sections[member].ops[k]];
+    x.push_back(second ? n.b : n.a);
+  }
+  return x;
+}
+
+/// Whether operands x (by lane) are one vector of a block as wide, lane l from its lane l.
+inline bool whole_vector(const std::vector<int>& x, const std::vector<LaneBlock>& blocks,
+                         const std::vector<LaneSlot>& slot) {
+  const LaneSlot& first = slot[x[0]];
+  if (first.block < 0 || blocks[static_cast<std::size_t>(first.block)].members.size() != x.size())
+    return false;
+  for (std::size_t l = 0; l < x.size(); ++l)
+    if (slot[x[l]].block != first.block || slot[x[l]].lane != static_cast<int>(l) ||
+        slot[x[l]].position != first.position)
+      return false;
+  return true;
+}
+
 /// The vectors a block fills from separate values (its lanes reading values that are neither
 /// constants nor the lanes of one vector), each counted once.
 template <class T>
 long lane_fills(const Program<T>& program, const std::vector<Section>& sections,
                 const std::vector<LaneBlock>& blocks, const std::vector<LaneSlot>& slot,
                 std::size_t b) {
-  const auto& nodes = program.graph.nodes;
   const LaneBlock& block = blocks[b];
-  const std::size_t width = block.members.size();
   std::set<std::vector<int>> fills;
   for (std::size_t k = 0; k < block.in_lanes.size(); ++k) {
     if (!block.in_lanes[k]) continue;
     for (const bool second : {false, true}) {
-      std::vector<int> x;
-      for (std::size_t l = 0; l < width; ++l) {
-        const Node<T>& n = nodes[sections[block.members[l]].ops[k]];
-        x.push_back(second ? n.b : n.a);
-      }
+      const std::vector<int> x = lane_operands(program, sections, block, k, second);
       if (x[0] < 0) continue;
-      bool constant = true, whole = slot[x[0]].block >= 0 &&
-                                    blocks[static_cast<std::size_t>(slot[x[0]].block)]
-                                            .members.size() == width;
-      for (std::size_t l = 0; l < width; ++l) {
-        constant = constant && nodes[x[l]].op == Op::Const;
-        whole = whole && slot[x[l]].block == slot[x[0]].block &&
-                slot[x[l]].lane == static_cast<int>(l) &&
-                slot[x[l]].position == slot[x[0]].position;
-      }
-      if (!constant && !whole) fills.insert(x);
+      const bool constant = std::all_of(x.begin(), x.end(), [&](int id) {
+        return program.graph.nodes[id].op == Op::Const;
+      });
+      if (!constant && !whole_vector(x, blocks, slot)) fills.insert(x);
     }
   }
   return static_cast<long>(fills.size());
@@ -850,14 +863,8 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
         auto at = [&](std::size_t l) { return sections[block.members[l]].ops[k]; };
         // an operand: a block's vector where lane l reads lane l of it, else its lanes filled
         auto lanes_of = [&](bool second) {
-          std::vector<int> x;
-          for (std::size_t l = 0; l < width; ++l) x.push_back(second ? nodes[at(l)].b : nodes[at(l)].a);
-          bool whole = slot[x[0]].block >= 0 &&
-                       blocks[static_cast<std::size_t>(slot[x[0]].block)].members.size() == width;
-          for (std::size_t l = 0; l < width && whole; ++l)
-            whole = slot[x[l]].block == slot[x[0]].block && slot[x[l]].lane == static_cast<int>(l) &&
-                    slot[x[l]].position == slot[x[0]].position;
-          if (whole) return vector_name[x[0]];
+          const std::vector<int> x = lane_operands(program, sections, block, k, second);
+          if (whole_vector(x, blocks, slot)) return vector_name[x[0]];
           std::string items;
           for (std::size_t l = 0; l < width; ++l) items += (l ? ", " : "") + operand(x[l]);
           return vector + "{" + items + "}";
@@ -875,22 +882,22 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
       ++code.lane_blocks;
     }
     out += "\n";
-  }
-  for (const Section& s : sections) {
-    if (lanes) break;
-    out += section_header<T>(model, s.body, s.pass);
-    if (s.group >= 0) {
-      std::string x;
-      for (const int id : s.inputs) x += (x.empty() ? "" : ", ") + element(id);
-      const std::string k = s.constants.empty()
-                                ? std::string()
-                                : fmt::format("{}_shape_{}_k[{}], ", prefix, s.group, s.instance);
-      out += fmt::format("    {{\n        const {} x[] = {{{}}};\n        {}_shape_{}({}x, w + {});\n    }}\n\n",
-                         type, x, prefix, s.group, k, s.w);
-      continue;
+  } else {
+    for (const Section& s : sections) {
+      out += section_header<T>(model, s.body, s.pass);
+      if (s.group >= 0) {
+        std::string x;
+        for (const int id : s.inputs) x += (x.empty() ? "" : ", ") + element(id);
+        const std::string k = s.constants.empty()
+                                  ? std::string()
+                                  : fmt::format("{}_shape_{}_k[{}], ", prefix, s.group, s.instance);
+        out += fmt::format("    {{\n        const {} x[] = {{{}}};\n        {}_shape_{}({}x, w + {});\n    }}\n\n",
+                           type, x, prefix, s.group, k, s.w);
+        continue;
+      }
+      for (const int id : s.ops) out += statement(id);
+      out += "\n";
     }
-    for (const int id : s.ops) out += statement(id);
-    out += "\n";
   }
   out += "    // ---- outputs\n";
   std::size_t stored = 0;
