@@ -8,10 +8,12 @@
 //   seed:         the chapter's work counts, n link visits for RNEA and ABA and n(n+1)/2 joint
 //                 pairs for CRBA, with n the degrees of freedom.
 // Then forward dynamics both ways on the chains: generated ABA against generated CRBA, the bias
-// h = RNEA(q, v, 0) and a dense LDL^T solve of M qdd = tau - h. Writes work_counts.md and
+// h = RNEA(q, v, 0) and a dense LDL^T solve of M qdd = tau - h; and for ur5, iiwa14, solo12 and
+// atlas, rnea_derivatives' operations by pass beside RNEA's and ABA's. Writes work_counts.md and
 // work_counts.json into OUTPUT_DIR and prints the Markdown; progress goes to stderr.
 //
 // usage: dyngen_work_counts OUTPUT_DIR
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -65,6 +67,16 @@ struct DenseRow {
   int nv;
   Kinds aba, crba, bias, crba_and_bias, solve;
 };
+
+/// Where rnea_derivatives' operations go, beside the value functions (generated code throughout).
+struct DerivativeRow {
+  std::string model, base;
+  int nv;
+  long rnea, aba, forward, backward, pairs, rnea_derivatives, aba_derivatives;
+};
+
+/// The robots of issue 13's targets.
+constexpr const char* derivative_robots[] = {"ur5", "iiwa14", "solo12", "atlas"};
 
 long seed_work(Algorithm a, long n) { return a == Algorithm::Crba ? n * (n + 1) / 2 : n; }
 
@@ -163,6 +175,21 @@ std::vector<Row> count_model(const std::string& name, const std::string& kind,
   return rows;
 }
 
+DerivativeRow count_derivatives(const std::string& name, const std::string& base,
+                                const Model<double>& model) {
+  // add, mul, div and neg: sin and cos are the same few in every function of a robot
+  auto arithmetic = [](const gen::OpCounts& c) { return c.add + c.mul + c.div + c.neg; };
+  auto total = [&](const char* algorithm) {
+    return arithmetic(gen::count_ops(gen::trace<double>(algorithm, model)));
+  };
+  const auto by_pass = gen::count_ops_by_pass(gen::trace<double>("rnea_derivatives", model));
+  auto pass = [&](Pass p) { return by_pass.count(p) ? arithmetic(by_pass.at(p)) : 0L; };
+  DerivativeRow d{name, base, model.nv, total("rnea"), total("aba"), pass(Pass::Forward),
+                  pass(Pass::Backward), pass(Pass::Pairs), 0, total("aba_derivatives")};
+  for (const auto& [p, c] : by_pass) d.rnea_derivatives += arithmetic(c);
+  return d;
+}
+
 // ---- output ------------------------------------------------------------------------------
 
 std::string by_kind(const Kinds& k) {
@@ -184,7 +211,8 @@ const Row& find(const std::vector<Row>& rows, const std::string& model, Algorith
   throw std::logic_error("no row for " + model);
 }
 
-std::string markdown(const std::vector<Row>& rows, const std::vector<DenseRow>& dense) {
+std::string markdown(const std::vector<Row>& rows, const std::vector<DenseRow>& dense,
+                     const std::vector<DerivativeRow>& derivatives) {
   std::string md = fmt::format(
       "# Work counts\n\n"
       "Operations of one call, counted, not timed (`dyngen_work_counts`, bench/README.md). "
@@ -265,10 +293,31 @@ std::string markdown(const std::vector<Row>& rows, const std::vector<DenseRow>& 
                       d.solve.total(), both_ways, ratio(both_ways, d.aba.total()),
                       per(d.aba.total(), d.nv), per(both_ways, d.nv));
   }
+  md +=
+      "\n## Derivatives: where rnea_derivatives' operations go\n\n"
+      "Generated code, add, mul, div and neg (sin and cos, the same few in each function, left "
+      "out as in docs/performance.md's derivative tables). rnea_derivatives by the pass that "
+      "records them (`dyngen/rnea_derivatives.hpp`): the *forward* and *backward* passes do "
+      "each body's work in base coordinates (its joint columns, inertia, variation and the four "
+      "forces its columns pair with), the *pairs* the inner products of every pair of joints "
+      "on a path (kernel loops where the trace keeps the call). *Per-body work over RNEA* is "
+      "forward + backward over rnea: what the derivatives cost before any pair is formed. Issue "
+      "13's targets in time are at most 4 times RNEA and 3 times ABA (6 and 4 on atlas "
+      "floating).\n\n"
+      "| robot | base | DoF | rnea | forward | backward | pairs | rnea_derivatives | "
+      "per-body work over rnea | over rnea | aba | aba_derivatives | over aba |\n"
+      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const DerivativeRow& d : derivatives)
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                      d.model, d.base, d.nv, d.rnea, d.forward, d.backward, d.pairs,
+                      d.rnea_derivatives, ratio(d.forward + d.backward, d.rnea),
+                      ratio(d.rnea_derivatives, d.rnea), d.aba, d.aba_derivatives,
+                      ratio(d.aba_derivatives, d.aba));
   return md;
 }
 
-nlohmann::json json(const std::vector<Row>& rows, const std::vector<DenseRow>& dense) {
+nlohmann::json json(const std::vector<Row>& rows, const std::vector<DenseRow>& dense,
+                    const std::vector<DerivativeRow>& derivatives) {
   nlohmann::json out = {
       {"description",
        "operations of one call: generated (live operations of the simplified trace), runtime "
@@ -276,7 +325,8 @@ nlohmann::json json(const std::vector<Row>& rows, const std::vector<DenseRow>& d
        "planar chains), seed_work (n for RNEA and ABA, n(n+1)/2 for CRBA, n = DoF); add counts "
        "add and sub"},
       {"functions", nlohmann::json::array()},
-      {"forward_dynamics", nlohmann::json::array()}};
+      {"forward_dynamics", nlohmann::json::array()},
+      {"derivatives", nlohmann::json::array()}};
   for (const Row& r : rows) {
     nlohmann::json f = {{"model", r.model},
                         {"kind", r.kind},
@@ -289,6 +339,18 @@ nlohmann::json json(const std::vector<Row>& rows, const std::vector<DenseRow>& d
     if (r.hand_written) f["hand_written"] = to_json(*r.hand_written);
     out["functions"].push_back(f);
   }
+  for (const DerivativeRow& d : derivatives)
+    out["derivatives"].push_back({{"model", d.model},
+                                  {"base", d.base},
+                                  {"dof", d.nv},
+                                  {"rnea", d.rnea},
+                                  {"aba", d.aba},
+                                  {"rnea_derivatives",
+                                   {{"forward", d.forward},
+                                    {"backward", d.backward},
+                                    {"pairs", d.pairs},
+                                    {"total", d.rnea_derivatives}}},
+                                  {"aba_derivatives", d.aba_derivatives}});
   for (const DenseRow& d : dense)
     out["forward_dynamics"].push_back({{"model", d.model},
                                        {"dof", d.nv},
@@ -330,10 +392,23 @@ int run(const std::filesystem::path& output) {
       rows.insert(rows.end(), counted.begin(), counted.end());
     }
 
+  std::vector<DerivativeRow> derivatives;
+  for (const test::RobotFile& robot : test::robot_files()) {
+    if (std::find(std::begin(derivative_robots), std::end(derivative_robots), robot.name) ==
+        std::end(derivative_robots))
+      continue;
+    for (const bool floating : {false, true}) {
+      const char* base = floating ? "floating" : "fixed";
+      std::fprintf(stderr, "  %s (%s base): derivatives\n", robot.name.c_str(), base);
+      derivatives.push_back(
+          count_derivatives(robot.name, base, test::load_for_aba(robot, floating)));
+    }
+  }
+
   std::filesystem::create_directories(output);
-  const std::string md = markdown(rows, dense);
+  const std::string md = markdown(rows, dense, derivatives);
   std::ofstream(output / "work_counts.md") << md;
-  std::ofstream(output / "work_counts.json") << json(rows, dense).dump(1) << "\n";
+  std::ofstream(output / "work_counts.json") << json(rows, dense, derivatives).dump(1) << "\n";
   std::fputs(md.c_str(), stdout);
   std::fprintf(stderr, "wrote %s and %s\n", (output / "work_counts.md").c_str(),
                (output / "work_counts.json").c_str());

@@ -74,6 +74,15 @@ OpCounts count_ops_of(const KernelRecord& call) {
   return c;
 }
 
+/// Adds node n's operations to c: a kernel call's are those of its loops.
+template <class T>
+void count_node(OpCounts& c, const Program<T>& program, const Node<T>& n) {
+  count(c, n.op);
+  if (n.op != Op::Call) return;
+  const OpCounts k = count_ops_of(program.graph.calls[n.a]);
+  c.add += k.add, c.mul += k.mul, c.div += k.div, c.neg += k.neg, c.sin += k.sin, c.cos += k.cos;
+}
+
 /// "{" then the items on lines of at most 100 columns indented by 8, then "}".
 std::string braced_list(const std::vector<std::string>& items) {
   std::string text = "{", line;
@@ -161,20 +170,25 @@ std::string joint_description(const Model<double>& model, int body) {
   return "?";
 }
 
+
 template <class T>
 OpCounts count_ops(const Program<T>& program, bool live_only) {
   const std::vector<bool> live = live_nodes(program);
   OpCounts c;
-  for (std::size_t id = 0; id < program.graph.nodes.size(); ++id) {
-    if (!live[id] && live_only) continue;
-    const Node<T>& n = program.graph.nodes[id];
-    count(c, n.op);
-    if (n.op == Op::Call) {
-      const OpCounts k = count_ops_of(program.graph.calls[n.a]);
-      c.add += k.add, c.mul += k.mul, c.div += k.div, c.neg += k.neg, c.sin += k.sin, c.cos += k.cos;
-    }
-  }
+  for (std::size_t id = 0; id < program.graph.nodes.size(); ++id)
+    if (live[id] || !live_only) count_node(c, program, program.graph.nodes[id]);
   return c;
+}
+
+template <class T>
+std::map<Pass, OpCounts> count_ops_by_pass(const Program<T>& program) {
+  const std::vector<bool> live = live_nodes(program);
+  std::map<Pass, OpCounts> by_pass;
+  for (std::size_t id = 0; id < program.graph.nodes.size(); ++id) {
+    const Node<T>& n = program.graph.nodes[id];
+    if (live[id]) count_node(by_pass[n.pass], program, n);
+  }
+  return by_pass;
 }
 
 namespace {
@@ -997,6 +1011,8 @@ std::string emit_trig_fill(const Model<double>& model, bool single_precision,
 
 template OpCounts count_ops<double>(const Program<double>&, bool);
 template OpCounts count_ops<float>(const Program<float>&, bool);
+template std::map<Pass, OpCounts> count_ops_by_pass<double>(const Program<double>&);
+template std::map<Pass, OpCounts> count_ops_by_pass<float>(const Program<float>&);
 template EmittedCode emit_code<double>(const Program<double>&, const Model<double>&, Structure,
                                        const Dialect&);
 template EmittedCode emit_code<float>(const Program<float>&, const Model<double>&, Structure,

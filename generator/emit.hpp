@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 
 #include <fmt/format.h>
@@ -26,6 +27,11 @@ std::string to_string(const OpCounts& c);
 /// nodes the runtime all computes).
 template <class T>
 OpCounts count_ops(const Program<T>& program, bool live_only = true);
+
+/// count_ops of the live operations, split by the pass that recorded them (a kernel call's
+/// loops count in the call's pass).
+template <class T>
+std::map<Pass, OpCounts> count_ops_by_pass(const Program<T>& program);
 
 /// A C++ literal that reads back to the same bits: shortest round trip, with a suffix for
 /// float and parentheses when negative.

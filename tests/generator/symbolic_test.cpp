@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
 #include <random>
 #include <ostream>
 #include <set>
@@ -537,6 +538,30 @@ TEST(KernelCalls, SmallCallsAreInlinedAndBigOnesRecorded) {
   // the outputs that a kernel writes whole are passed to it, not copied
   EXPECT_NE(code.find("dqdd_dq: written by the kernel"), std::string::npos) << code;
   EXPECT_EQ(code.find("dqdd_dq[0] ="), std::string::npos);
+}
+
+TEST(KernelCalls, OperationsByPassAddUpAndACallCountsInItsPass) {
+  const Model<double> model =
+      load_robot(std::string(DYNGEN_TEST_MODELS) + "/ur5.urdf").model;
+  const Program<double> inlined = trace<double>("rnea_derivatives", model);
+  const Program<double> called = trace<double>("rnea_derivatives", model, true, 0);
+  for (const Program<double>* program : {&inlined, &called}) {
+    const std::map<Pass, OpCounts> by_pass = count_ops_by_pass(*program);
+    std::vector<Pass> passes;
+    long total = 0;
+    for (const auto& [pass, c] : by_pass) passes.push_back(pass), total += c.total();
+    EXPECT_EQ(passes, (std::vector<Pass>{Pass::Forward, Pass::Backward, Pass::Pairs}));
+    EXPECT_EQ(total, count_ops(*program).total());
+  }
+  // the kernel's loops count in the pairs' pass; the call reads every entry of its inputs, so
+  // the passes before it keep work that the inlined trace folds away
+  ASSERT_EQ(called.graph.calls.size(), 1u);
+  long kernel = 0;
+  for (const long n : called.graph.calls[0].ops) kernel += n;
+  const auto a = count_ops_by_pass(inlined), b = count_ops_by_pass(called);
+  EXPECT_EQ(b.at(Pass::Pairs).total(), kernel);
+  EXPECT_GE(b.at(Pass::Forward).total(), a.at(Pass::Forward).total());
+  EXPECT_GE(b.at(Pass::Backward).total(), a.at(Pass::Backward).total());
 }
 
 }  // namespace
