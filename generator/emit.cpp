@@ -576,11 +576,13 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   std::vector<LaneSlot> slot;
   std::vector<int> order;  // of emission, with lane blocks (schedule_lane_blocks)
   const long operations = std::count(is_op.begin(), is_op.end(), true);
-  // Auto: lanes where limbs repeat, up to max_lane_function_operations; else shared from
-  // min_shared_function_operations, unrolled below
+  // Auto: lanes where limbs repeat, up to max_lane_function_operations counted with the kernels'
+  // loops, as the banner counts them; else shared from min_shared_function_operations (of the
+  // statements), unrolled below
   bool lanes = !dialect.c() && !dialect.batch() &&
                (structure == Structure::Lanes ||
-                (structure == Structure::Auto && operations < max_lane_function_operations));
+                (structure == Structure::Auto &&
+                 count_ops(program).total() < max_lane_function_operations));
   if (lanes) {
     blocks = plan_lane_blocks(program, model, sections);
     order = schedule_lane_blocks(program, sections, blocks, slot);

@@ -62,7 +62,8 @@ inline constexpr long min_shared_function_operations = 1800;
 /// "Code structure").
 inline constexpr std::size_t min_shared_operations = 40;
 
-/// Above this many operations Structure::Auto shares rather than computes in lanes. Below it
+/// From this many operations (the banner's count, kernels' loops included) Structure::Auto
+/// shares rather than computes in lanes. Below it
 /// lanes ran faster than shared functions in every function measured, up to solo12 floating's
 /// aba_derivatives (35,980 operations, 1.24 times); atlas floating's derivatives (48,767 and
 /// 178,388, with kernel calls) took 1.6 times as long to compile in lanes, past the minute

@@ -457,6 +457,21 @@ TEST(Structures, AutoPutsLimbsInLanesAndSharesOnlyBigFunctions) {
   EXPECT_GT(small_functions, 0);
 }
 
+TEST(Structures, AutoCountsKernelLoopsAgainstTheLaneLimit) {
+  // atlas floating's rnea_derivatives: under the limit in statements, over it with the pairs'
+  // kernel, whose loops the compile-time budget of issue 13 was measured with
+  LoadOptions options;
+  options.floating_base = true;
+  const Robot atlas = load_robot(std::string(DYNGEN_TEST_MODELS) + "/atlas.urdf", options);
+  const Program<double> program = trace<double>("rnea_derivatives", atlas.model);
+  ASSERT_FALSE(program.graph.calls.empty());
+  EXPECT_GE(count_ops(program).total(), max_lane_function_operations);
+  const EmittedCode automatic = emit_code(program, atlas.model, Structure::Auto);
+  EXPECT_EQ(automatic.lane_blocks, 0);
+  EXPECT_EQ(automatic.body, emit_code(program, atlas.model, Structure::Shared).body);
+  EXPECT_GT(emit_code(program, atlas.model, Structure::Lanes).lane_blocks, 0);
+}
+
 TEST(GeneratedPackage, CopiesTheRuntimeSinCosVerbatim) {
   std::ifstream in(std::string(DYNGEN_SOURCE_DIR) + "/runtime/include/dyngen/sincos.h");
   const std::string runtime((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
