@@ -83,6 +83,15 @@ void count_node(OpCounts& c, const Program<T>& program, const Node<T>& n) {
   c.add += k.add, c.mul += k.mul, c.div += k.div, c.neg += k.neg, c.sin += k.sin, c.cos += k.cos;
 }
 
+/// The operations of the nodes marked in counted.
+template <class T>
+OpCounts count_marked(const Program<T>& program, const std::vector<bool>& counted) {
+  OpCounts c;
+  for (std::size_t id = 0; id < program.graph.nodes.size(); ++id)
+    if (counted[id]) count_node(c, program, program.graph.nodes[id]);
+  return c;
+}
+
 /// "{" then the items on lines of at most 100 columns indented by 8, then "}".
 std::string braced_list(const std::vector<std::string>& items) {
   std::string text = "{", line;
@@ -170,14 +179,10 @@ std::string joint_description(const Model<double>& model, int body) {
   return "?";
 }
 
-
 template <class T>
 OpCounts count_ops(const Program<T>& program, bool live_only) {
-  const std::vector<bool> live = live_nodes(program);
-  OpCounts c;
-  for (std::size_t id = 0; id < program.graph.nodes.size(); ++id)
-    if (live[id] || !live_only) count_node(c, program, program.graph.nodes[id]);
-  return c;
+  return count_marked(program, live_only ? live_nodes(program)
+                                         : std::vector<bool>(program.graph.nodes.size(), true));
 }
 
 template <class T>
@@ -582,7 +587,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
   bool lanes = !dialect.c() && !dialect.batch() &&
                (structure == Structure::Lanes ||
                 (structure == Structure::Auto &&
-                 count_ops(program).total() < max_lane_function_operations));
+                 count_marked(program, live).total() < max_lane_function_operations));
   if (lanes) {
     blocks = plan_lane_blocks(program, model, sections);
     order = schedule_lane_blocks(program, sections, blocks, slot);
