@@ -85,8 +85,9 @@ class Graph {
     pass_ = pass;
   }
 
-  /// Kernel calls of at least this many operations are recorded as calls; smaller ones, and
-  /// every call of an unsimplified graph, run their loops on Sym (inlined).
+  /// Kernel calls that would add at least this many operations inlined (their loops on the
+  /// call's constants, folded) are recorded as calls; smaller ones, and every call of an
+  /// unsimplified graph, run their loops on Sym (inlined).
   long call_kernels_from = 0;
 
   /// Records a kernel call (KernelHook), or returns false to have it inlined.
@@ -293,9 +294,39 @@ bool Graph<T>::record_call(const Call& call, const Run& run) {
     record.ops[static_cast<std::size_t>(Op::Const)] = 0;
     record.ops[static_cast<std::size_t>(Op::Input)] = 0;
   }
-  long total = 0;
-  for (const long k : record.ops) total += k;
-  if (total < call_kernels_from) return false;
+  // what inlining would add: the loops on the call's constants, folded, with the rest fresh
+  long inlined = 0;
+  {
+    Graph<T> scratch(true);
+    const Recording<T> recording(scratch);
+    std::vector<std::vector<Sym<T>>> in, out;
+    for (const auto& array : call.inputs) {
+      std::vector<Sym<T>>& x = in.emplace_back();
+      for (std::size_t k = 0; k < array.size(); ++k)
+        x.push_back(Sym<T>::node(is_const(array[k].id)
+                                     ? scratch.constant(nodes[array[k].id].value)
+                                     : scratch.input("x", static_cast<int>(k))));
+    }
+    for (const auto& array : call.outputs) out.emplace_back(array.size());
+    std::vector<std::span<const Sym<T>>> in_spans(in.begin(), in.end());
+    std::vector<std::span<Sym<T>>> out_spans(out.begin(), out.end());
+    run(std::span<const std::span<const Sym<T>>>(in_spans),
+        std::span<const std::span<Sym<T>>>(out_spans));
+    std::vector<char> live(scratch.nodes.size(), 0);
+    std::vector<int> stack;
+    for (const auto& array : out)
+      for (const Sym<T>& y : array) stack.push_back(y.id);
+    while (!stack.empty()) {
+      const int id = stack.back();
+      stack.pop_back();
+      if (id < 0 || live[id]) continue;
+      live[id] = 1;
+      const Node<T>& n = scratch.nodes[id];
+      if (n.op != Op::Const && n.op != Op::Input) ++inlined;
+      stack.push_back(n.a), stack.push_back(n.b);
+    }
+  }
+  if (inlined < call_kernels_from) return false;
 
   record.kernel = call.kernel;
   record.ints.assign(call.ints.begin(), call.ints.end());

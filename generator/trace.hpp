@@ -47,15 +47,15 @@ struct Program {
 template <class T>
 int first_non_finite_constant(const Program<T>& program);
 
-/// Kernel calls (dyngen/kernels.hpp) of fewer operations than this are inlined by default: their
-/// loops unrolled into the trace, which folds the work on exact zeros and runs faster for small
-/// robots; above it, a call keeps the code of a 30-DoF robot's derivatives small enough to
-/// compile in a minute (docs/performance.md, "Derivatives").
+/// Kernel calls (dyngen/kernels.hpp) that would add fewer operations than this inlined are
+/// inlined by default: their loops unrolled into the trace, which folds the work on exact zeros
+/// and runs faster for small robots; above it, a call keeps the code of a 30-DoF robot's
+/// derivatives small enough to compile in a minute (docs/performance.md, "Derivatives").
 inline constexpr long default_call_kernels_from = 10000;
 
 /// Traces `algorithm` on the model converted to T. With simplify = false the graph holds
-/// every operation the runtime performs for the same call, for counting. Kernel calls of at
-/// least call_kernels_from operations stay calls; the others are inlined.
+/// every operation the runtime performs for the same call, for counting. Kernel calls that
+/// would add at least call_kernels_from operations inlined stay calls; the others are inlined.
 template <class T>
 Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool simplify = true,
                  long call_kernels_from = default_call_kernels_from);

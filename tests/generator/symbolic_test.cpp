@@ -67,7 +67,8 @@ std::vector<T> run_call(const KernelRecord& call, const std::vector<std::vector<
   const auto& t = call.tables;
   if (call.kernel == "derivative_pairs")
     kernels::derivative_pairs(call.ints.at(0), t.at(0).data(), t.at(1).data(), t.at(2).data(),
-                              in.at(0).data(), in.at(1).data(), out.at(0).data(), out.at(1).data());
+                              in.at(0).data(), in.at(1).data(), in.at(2).data(),
+                              out.at(0).data(), out.at(1).data());
   else if (call.kernel == "neg_product")
     kernels::neg_product(call.ints.at(0), t.at(0).data(), t.at(1).data(), in.at(0).data(),
                          in.at(1).data(), out.at(0).data());
@@ -546,10 +547,9 @@ TEST(KernelCalls, OperationsByPassAddUpAndACallCountsInItsPass) {
   const Program<double> inlined = trace<double>("rnea_derivatives", model);
   const Program<double> called = trace<double>("rnea_derivatives", model, true, 0);
   for (const Program<double>* program : {&inlined, &called}) {
-    const std::map<Pass, OpCounts> by_pass = count_ops_by_pass(*program);
     std::vector<Pass> passes;
     long total = 0;
-    for (const auto& [pass, c] : by_pass) passes.push_back(pass), total += c.total();
+    for (const auto& [pass, c] : count_ops_by_pass(*program)) passes.push_back(pass), total += c.total();
     EXPECT_EQ(passes, (std::vector<Pass>{Pass::Forward, Pass::Backward, Pass::Pairs}));
     EXPECT_EQ(total, count_ops(*program).total());
   }

@@ -20,59 +20,65 @@
 namespace dyngen {
 namespace kernels {
 
-/// f . m for 6-vectors whose angular and linear parts are interleaved (x, x, y, y, z, z), in
-/// the order of spatial.hpp's inner: the angular part and the linear part, each summed left to
-/// right, then added.
+/// f . m for 6-vectors (angular, then linear), as spatial.hpp's inner: each part summed left
+/// to right, then added.
 template <class S>
 inline S inner6(const S* f, const S* m) {
-  return (f[0] * m[0] + f[2] * m[2] + f[4] * m[4]) + (f[1] * m[1] + f[3] * m[3] + f[5] * m[5]);
+  return (f[0] * m[0] + f[1] * m[1] + f[2] * m[2]) + (f[3] * m[3] + f[4] * m[4] + f[5] * m[5]);
 }
 
-#if defined(__GNUC__)
-/// inner6 for double with GCC's (and clang's) vector types: the angular sum in one lane, the
-/// linear sum in the other, in the scalar order, then added.
-inline double inner6(const double* f, const double* m) {
-  typedef double pair __attribute__((vector_size(2 * sizeof(double))));
-  pair sum, a, b;
-  __builtin_memcpy(&a, f, sizeof a);
-  __builtin_memcpy(&b, m, sizeof b);
-  sum = a * b;
-  for (int k = 2; k < 6; k += 2) {
-    __builtin_memcpy(&a, f + k, sizeof a);
-    __builtin_memcpy(&b, m + k, sizeof b);
-    sum = sum + a * b;
-  }
-  return sum[0] + sum[1];
-}
-#endif
-
-/// The entries of d tau / dq and d tau / dv that pair joint column c with the columns r on its
-/// path to the root (rnea_derivatives.hpp has the equations). For each column, motion holds 24
-/// numbers, s, dv, alpha and beta, and force 24 numbers, Ic s, Bc^T s, P and Q (6 each, base
-/// coordinates, interleaved as inner6 takes them). Column c's own joint has the columns
-/// [own_begin[c], own_end[c]); the path goes from own_end[c] - 1 through previous[r] to -1.
-/// Every other entry of the n x n row-major outputs is zero.
+/// f = X^T f, a force in child coordinates expressed in parent coordinates, as spatial.hpp's
+/// apply_force_T: [E^T n + r x E^T f; E^T f], with X as E (row-major) then r.
 template <class S>
-DYNGEN_KERNEL void derivative_pairs(int n, const int* own_begin, const int* own_end, const int* previous,
-                      const S* motion, const S* force, S* dtau_dq, S* dtau_dv) {
+inline void force_to_parent(const S* X, S* f) {
+  const S* E = X;
+  const S* r = X + 9;
+  const S l0 = E[0] * f[3] + E[3] * f[4] + E[6] * f[5];
+  const S l1 = E[1] * f[3] + E[4] * f[4] + E[7] * f[5];
+  const S l2 = E[2] * f[3] + E[5] * f[4] + E[8] * f[5];
+  const S n0 = E[0] * f[0] + E[3] * f[1] + E[6] * f[2];
+  const S n1 = E[1] * f[0] + E[4] * f[1] + E[7] * f[2];
+  const S n2 = E[2] * f[0] + E[5] * f[1] + E[8] * f[2];
+  f[0] = n0 + (r[1] * l2 - r[2] * l1);
+  f[1] = n1 + (r[2] * l0 - r[0] * l2);
+  f[2] = n2 + (r[0] * l1 - r[1] * l0);
+  f[3] = l0, f[4] = l1, f[5] = l2;
+}
+
+/// The entries of d tau / dq and d tau / dv that pair each joint column c with the columns r of
+/// its own joint and of its ancestors (rnea_derivatives.hpp has the equations). Per column,
+/// motion holds s, dv, alpha and beta and force Ic s, Bc^T s, P and Q (6 numbers each, in the
+/// column's body's coordinates); X holds each body's transform from its parent, E then r (12
+/// numbers). Column c is body column_body[c]'s; body b's columns are [first[b], first[b + 1])
+/// and its parent parent[b] (-1 for a root). Column c's forces are carried up its path, one
+/// transform a joint, and paired at each body with its columns. Every other entry of the
+/// n x n row-major outputs is zero.
+template <class S>
+DYNGEN_KERNEL void derivative_pairs(int n, const int* column_body, const int* first,
+                                    const int* parent, const S* X, const S* motion,
+                                    const S* force, S* dtau_dq, S* dtau_dv) {
   for (int e = 0; e < n * n; ++e) dtau_dq[e] = S(0), dtau_dv[e] = S(0);
   for (int c = 0; c < n; ++c) {
-    const S* IcS = force + 24 * c;
-    const S* BcS = IcS + 6;
-    const S* P = IcS + 12;
-    const S* Q = IcS + 18;
-    for (int r = own_end[c] - 1; r >= 0; r = previous[r]) {
-      const S* s = motion + 24 * r;
-      const S* dv = s + 6;
-      const S* alpha = s + 12;
-      const S* beta = s + 18;
-      // row c against the columns of its own joint and its ancestors
-      dtau_dq[c * n + r] = inner6(IcS, alpha) + inner6(BcS, dv);
-      dtau_dv[c * n + r] = inner6(IcS, beta) + inner6(BcS, s);
-      // column c against the rows of its strict ancestors
-      if (r < own_begin[c]) {
-        dtau_dq[r * n + c] = inner6(P, s);
-        dtau_dv[r * n + c] = inner6(Q, s);
+    S f[24];
+    for (int k = 0; k < 24; ++k) f[k] = force[24 * c + k];
+    const S* IcS = f;
+    const S* BcS = f + 6;
+    const S* P = f + 12;
+    const S* Q = f + 18;
+    int b = column_body[c];
+    for (int r = first[b]; r < first[b + 1]; ++r) {
+      const S* m = motion + 24 * r;  // s, dv, alpha, beta
+      dtau_dq[c * n + r] = inner6(IcS, m + 12) + inner6(BcS, m + 6);
+      dtau_dv[c * n + r] = inner6(IcS, m + 18) + inner6(BcS, m);
+    }
+    for (int j = parent[b]; j >= 0; b = j, j = parent[j]) {
+      for (int k = 0; k < 24; k += 6) force_to_parent(X + 12 * b, f + k);
+      for (int r = first[j]; r < first[j + 1]; ++r) {
+        const S* m = motion + 24 * r;
+        dtau_dq[c * n + r] = inner6(IcS, m + 12) + inner6(BcS, m + 6);
+        dtau_dv[c * n + r] = inner6(IcS, m + 18) + inner6(BcS, m);
+        dtau_dq[r * n + c] = inner6(P, m);
+        dtau_dv[r * n + c] = inner6(Q, m);
       }
     }
   }

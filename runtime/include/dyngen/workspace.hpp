@@ -15,27 +15,31 @@ struct Workspace {
       : Xup(model.nbodies), X0(model.nbodies), v(model.nbodies), a(model.nbodies), c(model.nbodies),
         f(model.nbodies), Ic(model.nbodies), IA(model.nbodies), pA(model.nbodies),
         U(model.nbodies), D(model.nbodies), Dinv(model.nbodies), u(model.nbodies),
-        zero(model.nv, S(0)), ov(model.nbodies), oa(model.nbodies), oIc(model.nbodies),
-        oBc(model.nbodies), oF(model.nbodies), s(model.nv), dv(model.nv), alpha(model.nv),
-        beta(model.nv), pair_motion(24 * static_cast<std::size_t>(model.nv)),
-        pair_force(pair_motion.size()), own_begin(model.nv), own_end(model.nv),
-        previous(model.nv), subtree_end(model.nbodies, 0), qdd(model.nv) {
+        zero(model.nv, S(0)), Bc(model.nbodies), F(model.nbodies), s(model.nv), dv(model.nv),
+        alpha(model.nv), beta(model.nv), pair_X(12 * static_cast<std::size_t>(model.nbodies)),
+        pair_motion(24 * static_cast<std::size_t>(model.nv)), pair_force(pair_motion.size()),
+        column_body(model.nv), first_column(model.nbodies + 1, model.nv), subtree_end(model.nbodies, 0), qdd(model.nv) {
     // the columns of the joints in body i's subtree are [v_index[i], subtree_end[i])
     for (int i = model.nbodies - 1; i >= 0; --i) {
       subtree_end[i] = std::max(subtree_end[i], model.v_index[i] + joint_nv(model.joint_type[i]));
       if (model.parent[i] >= 0)
         subtree_end[model.parent[i]] = std::max(subtree_end[model.parent[i]], subtree_end[i]);
     }
-    // each column's joint and the column before it on its path to the root
+    for (int i = 0; i < model.nbodies; ++i) {
+      first_column[i] = model.v_index[i];
+      for (int c = model.v_index[i]; c < model.v_index[i] + joint_nv(model.joint_type[i]); ++c)
+        column_body[c] = i;
+    }
+    if (model.nv > max_matrix_nv) return;
+    // each column's joint's end and the column before it on its path to the root
+    std::vector<int> own_end(model.nv), previous(model.nv);
     for (int i = 0; i < model.nbodies; ++i) {
       const int p = model.parent[i], k = model.v_index[i], end = k + joint_nv(model.joint_type[i]);
       for (int c = k; c < end; ++c) {
-        own_begin[c] = k;
         own_end[c] = end;
         previous[c] = c > k ? c - 1 : p < 0 ? -1 : model.v_index[p] + joint_nv(model.joint_type[p]) - 1;
       }
     }
-    if (model.nv > max_matrix_nv) return;
     const std::size_t columns =
         static_cast<std::size_t>(model.nbodies) * static_cast<std::size_t>(model.nv);
     pA_columns.resize(columns);
@@ -64,10 +68,11 @@ struct Workspace {
   std::vector<Xform<S>> X0;               // [nbodies] base to body (forward_kinematics)
   std::vector<Motion<S>> v;               // [nbodies] body velocity (rnea, aba: angular only)
   std::vector<Motion<S>> a;               // [nbodies] body acceleration, gravity included
-                                          // (rnea, aba: classical, rnea.hpp)
+                                          // (rnea, aba: classical, rnea.hpp; rnea_derivatives:
+                                          // spatial)
   std::vector<Motion<S>> c;               // [nbodies] velocity-product acceleration (ABA)
   std::vector<Force<S>> f;                // [nbodies] body force (RNEA)
-  std::vector<RigidInertia<S>> Ic;        // [nbodies] composite inertia (CRBA)
+  std::vector<RigidInertia<S>> Ic;        // [nbodies] composite inertia (CRBA, rnea_derivatives)
   std::vector<ArticulatedInertia<S>> IA;  // [nbodies] articulated inertia (ABA)
   std::vector<Force<S>> pA;               // [nbodies] articulated bias force (ABA)
   std::vector<Force<S>> U;                // [nbodies] IA S (ABA)
@@ -75,18 +80,17 @@ struct Workspace {
   std::vector<S> Dinv;                    // [nbodies] 1 / D (ABA)
   std::vector<S> u;                       // [nbodies] tau - S^T pA (ABA)
   std::vector<S> zero;                    // [nv] zeros: the v and a of gravity() and nle()
-  // rnea_derivatives, in base coordinates: body velocity and acceleration, composite inertia,
-  // its variation and composite force of the subtree; per joint column, S, and the derivative
-  // terms dv, alpha, beta of that column
-  std::vector<Motion<S>> ov, oa;              // [nbodies]
-  std::vector<RigidInertia<S>> oIc;           // [nbodies]
-  std::vector<InertiaVariation<S>> oBc;       // [nbodies]
-  std::vector<Force<S>> oF;                   // [nbodies]
+  // rnea_derivatives, in body coordinates: the composite variation and force of the subtree;
+  // per joint column, S and the derivative terms dv, alpha, beta of that column
+  std::vector<InertiaVariation<S>> Bc;        // [nbodies]
+  std::vector<Force<S>> F;                    // [nbodies]
   std::vector<Motion<S>> s, dv, alpha, beta;  // [nv]
-  // the arguments of kernels::derivative_pairs: per column (s, dv, alpha, beta) and
-  // (Ic s, Bc^T s, P, Q), 24 numbers each; each column's joint and path to the root
-  std::vector<S> pair_motion, pair_force;           // [24 nv]
-  std::vector<int> own_begin, own_end, previous;    // [nv]
+  // the arguments of kernels::derivative_pairs: per body its Xup (E, r: 12 numbers), per column
+  // (s, dv, alpha, beta) and (Ic s, Bc^T s, P, Q), 24 numbers each; each column's body and each
+  // body's first column (and nv after the last)
+  std::vector<S> pair_X;                       // [12 nbodies]
+  std::vector<S> pair_motion, pair_force;      // [24 nv]
+  std::vector<int> column_body, first_column;  // [nv], [nbodies + 1]
   // minv: per body and column of M^-1 (body * nv + column), pA, a and u of the unit torque
   std::vector<int> subtree_end;          // [nbodies]
   std::vector<Force<S>> pA_columns;      // [nbodies * nv] if nv <= max_matrix_nv
