@@ -66,7 +66,7 @@ std::vector<T> run_call(const KernelRecord& call, const std::vector<std::vector<
   for (const std::size_t size : call.outputs) out.emplace_back(size);
   const auto& t = call.tables;
   if (call.kernel == "derivative_pairs")
-    kernels::derivative_pairs(call.ints.at(0), t.at(0).data(), t.at(1).data(), t.at(2).data(),
+    kernels::derivative_pairs(call.ints.at(0), call.ints.at(1), t.at(0).data(), t.at(1).data(), t.at(2).data(),
                               in.at(0).data(), in.at(1).data(), in.at(2).data(),
                               out.at(0).data(), out.at(1).data());
   else if (call.kernel == "neg_product")

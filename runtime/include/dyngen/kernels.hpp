@@ -54,7 +54,7 @@ inline void force_to_parent(const S* X, S* f) {
 /// transform a joint, and paired at each body with its columns. Every other entry of the
 /// n x n row-major outputs is zero.
 template <class S>
-DYNGEN_KERNEL void derivative_pairs(int n, const int* column_body, const int* first,
+DYNGEN_KERNEL void derivative_pairs(int n, int carry, const int* column_body, const int* first,
                                     const int* parent, const S* X, const S* motion,
                                     const S* force, S* dtau_dq, S* dtau_dv) {
   for (int e = 0; e < n * n; ++e) dtau_dq[e] = S(0), dtau_dv[e] = S(0);
@@ -72,7 +72,8 @@ DYNGEN_KERNEL void derivative_pairs(int n, const int* column_body, const int* fi
       dtau_dv[c * n + r] = inner6(IcS, m + 18) + inner6(BcS, m);
     }
     for (int j = parent[b]; j >= 0; b = j, j = parent[j]) {
-      for (int k = 0; k < 24; k += 6) force_to_parent(X + 12 * b, f + k);
+      if (carry)
+        for (int k = 0; k < 24; k += 6) force_to_parent(X + 12 * b, f + k);
       for (int r = first[j]; r < first[j + 1]; ++r) {
         const S* m = motion + 24 * r;
         dtau_dq[c * n + r] = inner6(IcS, m + 12) + inner6(BcS, m + 6);

@@ -32,6 +32,11 @@
 #include "dyngen/trace_hook.hpp"
 #include "dyngen/workspace.hpp"
 
+// WIP: which pairs to carry; the choice is open (see the commit message)
+#ifndef DYNGEN_CARRY_FACTOR
+#define DYNGEN_CARRY_FACTOR 1000
+#endif
+
 namespace dyngen {
 
 /// X^T B X: a variation in child coordinates expressed in parent coordinates. The symmetric
@@ -112,20 +117,35 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
   }
 
   // the pairs of joints: each column's forces carried up its path to the root, one joint at a
-  // time, and paired with the columns of its own joint and of each ancestor
+  // time, and paired with the columns of its own joint and of each ancestor; on a deep robot
+  // every column's terms are turned into base coordinates once instead
   TraceHook<S>::enter(-1, Pass::Pairs);
-  for (std::size_t c = 0; c < n; ++c) {
-    S* m = &ws.pair_motion[24 * c];
-    put(m, ws.s[c]), put(m + 6, ws.dv[c]), put(m + 12, ws.alpha[c]), put(m + 18, ws.beta[c]);
-  }
+  int path_joints = 0;
+  for (std::size_t c = 0; c < n; ++c)
+    for (int j = model.parent[ws.column_body[c]]; j >= 0; j = model.parent[j]) ++path_joints;
+  const bool carry = 4 * path_joints <= DYNGEN_CARRY_FACTOR * model.nv;
   for (int i = 0; i < model.nbodies; ++i) {
+    const int p = model.parent[i];
+    if (!carry) ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
     const Xform<S>& X = ws.Xup[i];
     S* x = &ws.pair_X[12 * static_cast<std::size_t>(i)];
     const S e[12] = {X.E.xx, X.E.xy, X.E.xz, X.E.yx, X.E.yy, X.E.yz,
                      X.E.zx, X.E.zy, X.E.zz, X.r.x,  X.r.y,  X.r.z};
-    for (int k = 0; k < 12; ++k) x[k] = e[k];
+    for (int k = 0; k < 12; ++k) x[k] = carry ? e[k] : S(0);
+    for (int c = model.v_index[i]; c < model.v_index[i] + joint_nv(model.joint_type[i]); ++c) {
+      S* m = &ws.pair_motion[24 * static_cast<std::size_t>(c)];
+      const Motion<S>* terms[] = {&ws.s[c], &ws.dv[c], &ws.alpha[c], &ws.beta[c]};
+      for (int t = 0; t < 4; ++t)
+        put(m + 6 * t, carry ? *terms[t] : apply_motion_inv(ws.X0[i], *terms[t]));
+      if (carry) continue;
+      S* f = &ws.pair_force[24 * static_cast<std::size_t>(c)];
+      for (int t = 0; t < 4; ++t) {
+        const S* g = f + 6 * t;
+        put(f + 6 * t, apply_force_T(ws.X0[i], Force<S>{{g[0], g[1], g[2]}, {g[3], g[4], g[5]}}));
+      }
+    }
   }
-  const int ints[] = {model.nv};
+  const int ints[] = {model.nv, carry ? 1 : 0};
   const std::span<const int> tables[] = {ws.column_body, ws.first_column, model.parent};
   const std::span<const S> inputs[] = {ws.pair_X, ws.pair_motion, ws.pair_force};
   const std::span<S> outputs[] = {dtau_dq, dtau_dv};
@@ -133,7 +153,7 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
                                     "motion",      "force", "dtau_dq", "dtau_dv"};
   run_kernel<S>({"derivative_pairs", ints, tables, inputs, outputs, names},
                 [&](auto in, auto out) {
-                  kernels::derivative_pairs(model.nv, ws.column_body.data(),
+                  kernels::derivative_pairs(model.nv, carry, ws.column_body.data(),
                                             ws.first_column.data(), model.parent.data(),
                                             in[0].data(), in[1].data(), in[2].data(),
                                             out[0].data(), out[1].data());
