@@ -28,12 +28,12 @@
 //     runtime:   add 2223, mul 2538, div 6, neg 18, sin 6, cos 6
 //     0 of 14 link sections in 0 shared functions
 //   rnea_derivatives
-//     generated: add 2000, mul 2032, div 0, neg 0, sin 6, cos 6
-//     runtime:   add 3488, mul 3834, div 0, neg 3, sin 6, cos 6
+//     generated: add 1137, mul 1272, div 0, neg 1, sin 5, cos 5
+//     runtime:   add 4939, mul 5754, div 0, neg 3, sin 6, cos 6
 //     0 of 11 link sections in 0 shared functions
 //   aba_derivatives
-//     generated: add 3058, mul 3459, div 5, neg 81, sin 6, cos 6
-//     runtime:   add 8153, mul 9207, div 12, neg 114, sin 18, cos 18
+//     generated: add 2147, mul 2579, div 5, neg 79, sin 5, cos 5
+//     runtime:   add 9604, mul 11127, div 12, neg 114, sin 18, cos 18
 //     0 of 39 link sections in 0 shared functions
 //   frame_placements
 //     generated: add 54, mul 81, div 0, neg 1, sin 6, cos 6

@@ -32,12 +32,26 @@
 #include "dyngen/trace_hook.hpp"
 #include "dyngen/workspace.hpp"
 
-// WIP: which pairs to carry; the choice is open (see the commit message)
-#ifndef DYNGEN_CARRY_FACTOR
-#define DYNGEN_CARRY_FACTOR 1000
-#endif
-
 namespace dyngen {
+
+/// The pairs of joints are carried up joint by joint while all columns' paths to the root
+/// total at most this many joints, and turned into base coordinates once per column beyond
+/// it. Carried, the pairs run on S and the generator unrolls them with the robot's zeros,
+/// which takes fewer operations on every test robot (docs/performance.md, "Derivatives"), but
+/// the code grows with the paths; in base coordinates they are a kernel call for a deep robot,
+/// which keeps atlas floating's derivatives (150 path joints) compiling in under a minute.
+inline constexpr int max_carried_path_joints = 128;
+
+/// Whether rnea_derivatives carries its pairs (above): the sum over joint columns of the
+/// joints on the path from the column's body to the root, its own excluded.
+template <class S>
+bool carries_derivative_pairs(const Model<S>& model) {
+  int path_joints = 0;
+  for (int i = 0; i < model.nbodies; ++i)
+    for (int j = model.parent[i]; j >= 0; j = model.parent[j])
+      path_joints += joint_nv(model.joint_type[i]);
+  return path_joints <= max_carried_path_joints;
+}
 
 /// X^T B X: a variation in child coordinates expressed in parent coordinates. The symmetric
 /// part transforms as an inertia of mass 0, x -> x x* p as the force p (X^T (X x x* p) =
@@ -56,7 +70,6 @@ template <class S>
 void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                       std::span<const S> qd, std::span<const S> qdd, std::span<S> dtau_dq,
                       std::span<S> dtau_dv) {
-  const std::size_t n = static_cast<std::size_t>(model.nv);
   const Motion<S> a0 = base_acceleration(model);
 
   // forward pass, in body coordinates: v_i = X v_p + S qd_i, a_i = X a_p + S qdd_i + v_i x S qd_i
@@ -118,12 +131,9 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
 
   // the pairs of joints: each column's forces carried up its path to the root, one joint at a
   // time, and paired with the columns of its own joint and of each ancestor; on a deep robot
-  // every column's terms are turned into base coordinates once instead
+  // (max_carried_path_joints) each column's terms are turned into base coordinates once instead
   TraceHook<S>::enter(-1, Pass::Pairs);
-  int path_joints = 0;
-  for (std::size_t c = 0; c < n; ++c)
-    for (int j = model.parent[ws.column_body[c]]; j >= 0; j = model.parent[j]) ++path_joints;
-  const bool carry = 4 * path_joints <= DYNGEN_CARRY_FACTOR * model.nv;
+  const bool carry = carries_derivative_pairs(model);
   for (int i = 0; i < model.nbodies; ++i) {
     const int p = model.parent[i];
     if (!carry) ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
@@ -145,7 +155,14 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
       }
     }
   }
-  const int ints[] = {model.nv, carry ? 1 : 0};
+  // carried pairs run on S, so the generator unrolls them and keeps the robot's zeros
+  if (carry) {
+    kernels::derivative_pairs(model.nv, 1, ws.column_body.data(), ws.first_column.data(),
+                              model.parent.data(), ws.pair_X.data(), ws.pair_motion.data(),
+                              ws.pair_force.data(), dtau_dq.data(), dtau_dv.data());
+    return;
+  }
+  const int ints[] = {model.nv, 0};
   const std::span<const int> tables[] = {ws.column_body, ws.first_column, model.parent};
   const std::span<const S> inputs[] = {ws.pair_X, ws.pair_motion, ws.pair_force};
   const std::span<S> outputs[] = {dtau_dq, dtau_dv};
@@ -153,7 +170,7 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
                                     "motion",      "force", "dtau_dq", "dtau_dv"};
   run_kernel<S>({"derivative_pairs", ints, tables, inputs, outputs, names},
                 [&](auto in, auto out) {
-                  kernels::derivative_pairs(model.nv, carry, ws.column_body.data(),
+                  kernels::derivative_pairs(model.nv, 0, ws.column_body.data(),
                                             ws.first_column.data(), model.parent.data(),
                                             in[0].data(), in[1].data(), in[2].data(),
                                             out[0].data(), out[1].data());
