@@ -20,39 +20,60 @@
 namespace dyngen {
 namespace kernels {
 
-/// f . m for 6-vectors (angular, then linear), as spatial.hpp's inner: each part summed left
-/// to right, then added.
+/// f . m for 6-vectors whose angular and linear parts are interleaved (x, x, y, y, z, z), in
+/// the order of spatial.hpp's inner: the angular part and the linear part, each summed left to
+/// right, then added.
 template <class S>
 inline S inner6(const S* f, const S* m) {
-  return (f[0] * m[0] + f[1] * m[1] + f[2] * m[2]) + (f[3] * m[3] + f[4] * m[4] + f[5] * m[5]);
+  return (f[0] * m[0] + f[2] * m[2] + f[4] * m[4]) + (f[1] * m[1] + f[3] * m[3] + f[5] * m[5]);
 }
 
+#if defined(__GNUC__)
+/// inner6 for double with GCC's (and clang's) vector types: the angular sum in one lane, the
+/// linear sum in the other, in the scalar order, then added.
+inline double inner6(const double* f, const double* m) {
+  typedef double pair __attribute__((vector_size(2 * sizeof(double))));
+  pair sum, a, b;
+  __builtin_memcpy(&a, f, sizeof a);
+  __builtin_memcpy(&b, m, sizeof b);
+  sum = a * b;
+  for (int k = 2; k < 6; k += 2) {
+    __builtin_memcpy(&a, f + k, sizeof a);
+    __builtin_memcpy(&b, m + k, sizeof b);
+    sum = sum + a * b;
+  }
+  return sum[0] + sum[1];
+}
+#endif
+
 /// f = X^T f, a force in child coordinates expressed in parent coordinates, as spatial.hpp's
-/// apply_force_T: [E^T n + r x E^T f; E^T f], with X as E (row-major) then r.
+/// apply_force_T: [E^T n + r x E^T f; E^T f], with X as E (row-major) then r, and f
+/// interleaved as inner6 takes it.
 template <class S>
 inline void force_to_parent(const S* X, S* f) {
   const S* E = X;
   const S* r = X + 9;
-  const S l0 = E[0] * f[3] + E[3] * f[4] + E[6] * f[5];
-  const S l1 = E[1] * f[3] + E[4] * f[4] + E[7] * f[5];
-  const S l2 = E[2] * f[3] + E[5] * f[4] + E[8] * f[5];
-  const S n0 = E[0] * f[0] + E[3] * f[1] + E[6] * f[2];
-  const S n1 = E[1] * f[0] + E[4] * f[1] + E[7] * f[2];
-  const S n2 = E[2] * f[0] + E[5] * f[1] + E[8] * f[2];
+  const S l0 = E[0] * f[1] + E[3] * f[3] + E[6] * f[5];
+  const S l1 = E[1] * f[1] + E[4] * f[3] + E[7] * f[5];
+  const S l2 = E[2] * f[1] + E[5] * f[3] + E[8] * f[5];
+  const S n0 = E[0] * f[0] + E[3] * f[2] + E[6] * f[4];
+  const S n1 = E[1] * f[0] + E[4] * f[2] + E[7] * f[4];
+  const S n2 = E[2] * f[0] + E[5] * f[2] + E[8] * f[4];
   f[0] = n0 + (r[1] * l2 - r[2] * l1);
-  f[1] = n1 + (r[2] * l0 - r[0] * l2);
-  f[2] = n2 + (r[0] * l1 - r[1] * l0);
-  f[3] = l0, f[4] = l1, f[5] = l2;
+  f[2] = n1 + (r[2] * l0 - r[0] * l2);
+  f[4] = n2 + (r[0] * l1 - r[1] * l0);
+  f[1] = l0, f[3] = l1, f[5] = l2;
 }
 
 /// The entries of d tau / dq and d tau / dv that pair each joint column c with the columns r of
 /// its own joint and of its ancestors (rnea_derivatives.hpp has the equations). Per column,
-/// motion holds s, dv, alpha and beta and force Ic s, Bc^T s, P and Q (6 numbers each, in the
-/// column's body's coordinates); X holds each body's transform from its parent, E then r (12
-/// numbers). Column c is body column_body[c]'s; body b's columns are [first[b], first[b + 1])
-/// and its parent parent[b] (-1 for a root). Column c's forces are carried up its path, one
-/// transform a joint, and paired at each body with its columns. Every other entry of the
-/// n x n row-major outputs is zero.
+/// motion holds s, dv, alpha and beta and force Ic s, Bc^T s, P and Q (6 numbers each,
+/// interleaved as inner6 takes them, in the column's body's coordinates); X holds each body's
+/// transform from its parent, E then r (12 numbers). Column c is body column_body[c]'s; body
+/// b's columns are [first[b], first[b + 1]) and its parent parent[b] (-1 for a root). With
+/// carry, column c's forces are carried up its path, one transform a joint, and paired at each
+/// body with its columns; without, every term is in base coordinates and X is not read. Every
+/// other entry of the n x n row-major outputs is zero.
 template <class S>
 DYNGEN_KERNEL void derivative_pairs(int n, int carry, const int* column_body, const int* first,
                                     const int* parent, const S* X, const S* motion,

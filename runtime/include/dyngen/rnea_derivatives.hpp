@@ -150,8 +150,9 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
       if (carry) continue;
       S* f = &ws.pair_force[24 * static_cast<std::size_t>(c)];
       for (int t = 0; t < 4; ++t) {
-        const S* g = f + 6 * t;
-        put(f + 6 * t, apply_force_T(ws.X0[i], Force<S>{{g[0], g[1], g[2]}, {g[3], g[4], g[5]}}));
+        const S* g = f + 6 * t;  // as put wrote it
+        const Force<S> term{{g[0], g[2], g[4]}, {g[1], g[3], g[5]}};
+        put(f + 6 * t, apply_force_T(ws.X0[i], term));
       }
     }
   }

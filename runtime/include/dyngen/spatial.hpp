@@ -264,19 +264,19 @@ Motion<S> scale(const Motion<S>& m, const S& k) {
   return {scale(m.ang, k), scale(m.lin, k)};
 }
 
-/// The 6 numbers of a motion into out[0..5] as the kernels take them (kernels.hpp): the
-/// angular part, then the linear part.
+/// The 6 numbers of a motion into out[0..5] as the kernels take them (kernels.hpp, inner6): the
+/// angular and linear parts interleaved, w.x, v.x, w.y, v.y, w.z, v.z.
 template <class S>
 void put(S* out, const Motion<S>& m) {
-  out[0] = m.ang.x, out[1] = m.ang.y, out[2] = m.ang.z;
-  out[3] = m.lin.x, out[4] = m.lin.y, out[5] = m.lin.z;
+  out[0] = m.ang.x, out[1] = m.lin.x, out[2] = m.ang.y;
+  out[3] = m.lin.y, out[4] = m.ang.z, out[5] = m.lin.z;
 }
 
-/// The 6 numbers of a force into out[0..5], as a motion's (put above).
+/// The 6 numbers of a force into out[0..5], interleaved as a motion's (put above).
 template <class S>
 void put(S* out, const Force<S>& f) {
-  out[0] = f.ang.x, out[1] = f.ang.y, out[2] = f.ang.z;
-  out[3] = f.lin.x, out[4] = f.lin.y, out[5] = f.lin.z;
+  out[0] = f.ang.x, out[1] = f.lin.x, out[2] = f.ang.y;
+  out[3] = f.lin.y, out[4] = f.ang.z, out[5] = f.lin.z;
 }
 
 /// f . m, the power of a force on a motion

@@ -18,7 +18,8 @@ struct Workspace {
         zero(model.nv, S(0)), Bc(model.nbodies), F(model.nbodies), s(model.nv), dv(model.nv),
         alpha(model.nv), beta(model.nv), pair_X(12 * static_cast<std::size_t>(model.nbodies)),
         pair_motion(24 * static_cast<std::size_t>(model.nv)), pair_force(pair_motion.size()),
-        column_body(model.nv), first_column(model.nbodies + 1, model.nv), subtree_end(model.nbodies, 0), qdd(model.nv) {
+        column_body(model.nv), first_column(model.nbodies + 1, model.nv),
+        subtree_end(model.nbodies, 0), qdd(model.nv) {
     // the columns of the joints in body i's subtree are [v_index[i], subtree_end[i])
     for (int i = model.nbodies - 1; i >= 0; --i) {
       subtree_end[i] = std::max(subtree_end[i], model.v_index[i] + joint_nv(model.joint_type[i]));
@@ -31,7 +32,8 @@ struct Workspace {
         column_body[c] = i;
     }
     if (model.nv > max_matrix_nv) return;
-    // each column's joint's end and the column before it on its path to the root
+    // each column's joint's end and the column before it on its path to the root (for the rows
+    // of d tau below)
     std::vector<int> own_end(model.nv), previous(model.nv);
     for (int i = 0; i < model.nbodies; ++i) {
       const int p = model.parent[i], k = model.v_index[i], end = k + joint_nv(model.joint_type[i]);
