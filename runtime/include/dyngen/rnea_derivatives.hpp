@@ -17,10 +17,16 @@
 //                  = S_i . (Ic_j beta_j + Bc_j s_j)                        i an ancestor of j
 // where each product pairs a force with a motion in one frame: the forces of the deeper joint
 // are carried up to the other's, X^T f per joint, as CRBA carries its columns of M
-// (kernels::derivative_pairs). In the
-// bodies' frames each joint's S is a constant of few non-zeros and each body's inertia a
-// constant, so the generated code keeps the robot's zeros; Ic, Bc and F are carried up as
-// CRBA carries Ic (Bc's symmetric part as an inertia of mass 0, its skew part as a force).
+// (kernels::derivative_pairs). In the bodies' frames each joint's S is a constant of few
+// non-zeros and each body's inertia a constant, so the generated code keeps the robot's
+// zeros; Ic, Bc and F are carried up as CRBA carries Ic (Bc's symmetric part as an inertia of
+// mass 0, its skew part as a force).
+//
+// A deep robot (max_carried_path_joints) does it all in base coordinates instead, as one
+// frame: nothing is carried, every S, inertia and term is dense, and the pairs are plain inner
+// products, which a kernel call keeps compact. There a change of q_j moves each motion m of
+// the subtree by s_j x m as well, which the same formulas absorb (the rotation of S_i cancels
+// against the rigid part of F_i: (s x S)^T F + S^T (s x* F) = 0).
 #pragma once
 
 #include <cstddef>
@@ -34,16 +40,17 @@
 
 namespace dyngen {
 
-/// The pairs of joints are carried up joint by joint while all columns' paths to the root
-/// total at most this many joints, and turned into base coordinates once per column beyond
-/// it. Carried, the pairs run on S and the generator unrolls them with the robot's zeros,
-/// which takes fewer operations on every test robot (docs/performance.md, "Derivatives"), but
-/// the code grows with the paths; in base coordinates they are a kernel call for a deep robot,
-/// which keeps atlas floating's derivatives (150 path joints) compiling in under a minute.
+/// rnea_derivatives works in the bodies' frames, its pairs carried up joint by joint, while
+/// all columns' paths to the root total at most this many joints, and in base coordinates
+/// beyond it. Carried, the pairs run on S and the generator unrolls them with the robot's
+/// zeros, which takes fewer operations on every test robot (docs/performance.md,
+/// "Derivatives"), but the code grows with the paths, and the bodies' sparsity patterns differ
+/// where base coordinates make their sections alike and shareable: atlas floating's
+/// derivatives (150 path joints) compile in about half the time in base coordinates.
 inline constexpr int max_carried_path_joints = 128;
 
-/// Whether rnea_derivatives carries its pairs (above): the sum over joint columns of the
-/// joints on the path from the column's body to the root, its own excluded.
+/// Whether rnea_derivatives works in the bodies' frames (above): the sum over joint columns of
+/// the joints on the path from the column's body to the root, its own excluded.
 template <class S>
 bool carries_derivative_pairs(const Model<S>& model) {
   int path_joints = 0;
@@ -71,21 +78,28 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
                       std::span<const S> qd, std::span<const S> qdd, std::span<S> dtau_dq,
                       std::span<S> dtau_dv) {
   const Motion<S> a0 = base_acceleration(model);
+  // in the bodies' frames, or (a deep robot) all in base coordinates, the rigid motion of a
+  // subtree then being the same for every body of it
+  const bool local = carries_derivative_pairs(model);
 
-  // forward pass, in body coordinates: v_i = X v_p + S qd_i, a_i = X a_p + S qdd_i + v_i x S qd_i
-  // (RBDA Table 5.1), the columns' dv, alpha and beta, and each body's inertia, variation
-  // B_i = B(I_i, v_i) and force f_i = I a + v x* I v, to be summed over subtrees below
+  // forward pass: v_i = v_p + S qd_i, a_i = a_p + S qdd_i + v_i x S qd_i (RBDA Table 5.1,
+  // v_p and a_p moved into body i's frame by X_i, or S_i into base coordinates by X0_i), the
+  // columns' dv, alpha and beta, and each body's inertia, variation B_i = B(I_i, v_i) and force
+  // f_i = I a + v x* I v, to be summed over subtrees below
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Forward);
     const int k = model.v_index[i];
     const int p = model.parent[i];
     const Xform<S>& X = ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
-    const Motion<S> vp = p < 0 ? Motion<S>{} : apply_motion(X, ws.v[p]);
-    const Motion<S> ap = apply_motion(X, p < 0 ? a0 : ws.a[p]);
+    if (!local) ws.X0[i] = p < 0 ? X : compose(X, ws.X0[p]);
+    const Motion<S> vp = p < 0 ? Motion<S>{} : local ? apply_motion(X, ws.v[p]) : ws.v[p];
+    const Motion<S>& a_parent = p < 0 ? a0 : ws.a[p];
+    const Motion<S> ap = local ? apply_motion(X, a_parent) : a_parent;
     const int dofs = joint_nv(model.joint_type[i]);
     Motion<S> vJ, aJ;
     for (int d = 0; d < dofs; ++d) {
-      ws.s[k + d] = joint_column(model, i, d);
+      const Motion<S> column = joint_column(model, i, d);
+      ws.s[k + d] = local ? column : apply_motion_inv(ws.X0[i], column);
       vJ = vJ + scale(ws.s[k + d], qd[k + d]);
       aJ = aJ + scale(ws.s[k + d], qdd[k + d]);
     }
@@ -98,14 +112,14 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
       // for a one-column joint v_i x s = v_p x s, since s x s = 0
       ws.beta[k + d] = dofs == 1 ? ws.dv[k + d] + ws.dv[k + d] : cross_motion(vp + ws.v[i], s);
     }
-    ws.Ic[i] = model.I[i];
+    ws.Ic[i] = local ? model.I[i] : apply_inertia_T(ws.X0[i], model.I[i]);
     ws.Bc[i] = variation(ws.Ic[i], ws.v[i]);
     ws.F[i] = mul(ws.Ic[i], ws.a[i]) + cross_force(ws.v[i], ws.Bc[i].p);
   }
 
   // backward pass: with body i's subtree summed, the forces its columns pair with (Ic s and
   // Bc^T s against its own and its ancestors' columns, P and Q against its ancestors' rows);
-  // Ic_p += X^T Ic_i X, Bc_p += X^T Bc_i X, F_p += X^T F_i
+  // Ic_p += X^T Ic_i X, Bc_p += X^T Bc_i X, F_p += X^T F_i (no transform in base coordinates)
   for (int i = model.nbodies - 1; i >= 0; --i) {
     TraceHook<S>::enter(i, Pass::Backward);
     const int k = model.v_index[i];
@@ -124,40 +138,27 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
     }
     if (p < 0) continue;
     const Xform<S>& X = ws.Xup[i];
-    ws.Ic[p] = ws.Ic[p] + apply_inertia_T(X, ws.Ic[i]);
-    ws.Bc[p] = ws.Bc[p] + apply_variation_T(X, ws.Bc[i]);
-    ws.F[p] = ws.F[p] + apply_force_T(X, ws.F[i]);
+    ws.Ic[p] = ws.Ic[p] + (local ? apply_inertia_T(X, ws.Ic[i]) : ws.Ic[i]);
+    ws.Bc[p] = ws.Bc[p] + (local ? apply_variation_T(X, ws.Bc[i]) : ws.Bc[i]);
+    ws.F[p] = ws.F[p] + (local ? apply_force_T(X, ws.F[i]) : ws.F[i]);
   }
 
-  // the pairs of joints: each column's forces carried up its path to the root, one joint at a
-  // time, and paired with the columns of its own joint and of each ancestor; on a deep robot
-  // (max_carried_path_joints) each column's terms are turned into base coordinates once instead
+  // the pairs of joints: d tau_r / d(q, v)_c for r on c's path to the root, and the reverse;
+  // in the bodies' frames each column's forces are carried up its path one joint at a time
   TraceHook<S>::enter(-1, Pass::Pairs);
-  const bool carry = carries_derivative_pairs(model);
   for (int i = 0; i < model.nbodies; ++i) {
-    const int p = model.parent[i];
-    if (!carry) ws.X0[i] = p < 0 ? ws.Xup[i] : compose(ws.Xup[i], ws.X0[p]);
     const Xform<S>& X = ws.Xup[i];
-    S* x = &ws.pair_X[12 * static_cast<std::size_t>(i)];
     const S e[12] = {X.E.xx, X.E.xy, X.E.xz, X.E.yx, X.E.yy, X.E.yz,
                      X.E.zx, X.E.zy, X.E.zz, X.r.x,  X.r.y,  X.r.z};
-    for (int k = 0; k < 12; ++k) x[k] = carry ? e[k] : S(0);
-    for (int c = model.v_index[i]; c < model.v_index[i] + joint_nv(model.joint_type[i]); ++c) {
-      S* m = &ws.pair_motion[24 * static_cast<std::size_t>(c)];
-      const Motion<S>* terms[] = {&ws.s[c], &ws.dv[c], &ws.alpha[c], &ws.beta[c]};
-      for (int t = 0; t < 4; ++t)
-        put(m + 6 * t, carry ? *terms[t] : apply_motion_inv(ws.X0[i], *terms[t]));
-      if (carry) continue;
-      S* f = &ws.pair_force[24 * static_cast<std::size_t>(c)];
-      for (int t = 0; t < 4; ++t) {
-        const S* g = f + 6 * t;  // as put wrote it
-        const Force<S> term{{g[0], g[2], g[4]}, {g[1], g[3], g[5]}};
-        put(f + 6 * t, apply_force_T(ws.X0[i], term));
-      }
-    }
+    S* x = &ws.pair_X[12 * static_cast<std::size_t>(i)];
+    for (int k = 0; k < 12; ++k) x[k] = local ? e[k] : S(0);
+  }
+  for (std::size_t c = 0; c < static_cast<std::size_t>(model.nv); ++c) {
+    S* m = &ws.pair_motion[24 * c];
+    put(m, ws.s[c]), put(m + 6, ws.dv[c]), put(m + 12, ws.alpha[c]), put(m + 18, ws.beta[c]);
   }
   // carried pairs run on S, so the generator unrolls them and keeps the robot's zeros
-  if (carry) {
+  if (local) {
     kernels::derivative_pairs(model.nv, 1, ws.column_body.data(), ws.first_column.data(),
                               model.parent.data(), ws.pair_X.data(), ws.pair_motion.data(),
                               ws.pair_force.data(), dtau_dq.data(), dtau_dv.data());
