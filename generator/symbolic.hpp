@@ -274,22 +274,27 @@ template <class T>
 template <class Run, class Call>
 bool Graph<T>::record_call(const Call& call, const Run& run) {
   if (!simplify_) return false;
-  // count the loops' operations on fresh inputs in a scratch graph that keeps every operation
-  KernelRecord record;
-  {
-    Graph<T> scratch(false);
+  // runs the loops in a scratch graph, on inputs made by input(array entry, index)
+  const auto run_in = [&](Graph<T>& scratch, const auto& input) {
     const Recording<T> recording(scratch);
     std::vector<std::vector<Sym<T>>> in, out;
     for (const auto& array : call.inputs) {
       std::vector<Sym<T>>& x = in.emplace_back();
       for (std::size_t k = 0; k < array.size(); ++k)
-        x.push_back(Sym<T>::node(scratch.input("x", static_cast<int>(k))));
+        x.push_back(Sym<T>::node(input(array[k], static_cast<int>(k))));
     }
     for (const auto& array : call.outputs) out.emplace_back(array.size());
     std::vector<std::span<const Sym<T>>> in_spans(in.begin(), in.end());
     std::vector<std::span<Sym<T>>> out_spans(out.begin(), out.end());
     run(std::span<const std::span<const Sym<T>>>(in_spans),
         std::span<const std::span<Sym<T>>>(out_spans));
+    return out;
+  };
+  // count the loops' operations on fresh inputs in a scratch graph that keeps every operation
+  KernelRecord record;
+  {
+    Graph<T> scratch(false);
+    run_in(scratch, [&](const Sym<T>&, int k) { return scratch.input("x", k); });
     for (const Node<T>& n : scratch.nodes) ++record.ops[static_cast<std::size_t>(n.op)];
     record.ops[static_cast<std::size_t>(Op::Const)] = 0;
     record.ops[static_cast<std::size_t>(Op::Input)] = 0;
@@ -298,20 +303,9 @@ bool Graph<T>::record_call(const Call& call, const Run& run) {
   long inlined = 0;
   {
     Graph<T> scratch(true);
-    const Recording<T> recording(scratch);
-    std::vector<std::vector<Sym<T>>> in, out;
-    for (const auto& array : call.inputs) {
-      std::vector<Sym<T>>& x = in.emplace_back();
-      for (std::size_t k = 0; k < array.size(); ++k)
-        x.push_back(Sym<T>::node(is_const(array[k].id)
-                                     ? scratch.constant(nodes[array[k].id].value)
-                                     : scratch.input("x", static_cast<int>(k))));
-    }
-    for (const auto& array : call.outputs) out.emplace_back(array.size());
-    std::vector<std::span<const Sym<T>>> in_spans(in.begin(), in.end());
-    std::vector<std::span<Sym<T>>> out_spans(out.begin(), out.end());
-    run(std::span<const std::span<const Sym<T>>>(in_spans),
-        std::span<const std::span<Sym<T>>>(out_spans));
+    const std::vector<std::vector<Sym<T>>> out = run_in(scratch, [&](const Sym<T>& x, int k) {
+      return is_const(x.id) ? scratch.constant(nodes[x.id].value) : scratch.input("x", k);
+    });
     std::vector<char> live(scratch.nodes.size(), 0);
     std::vector<int> stack;
     for (const auto& array : out)
