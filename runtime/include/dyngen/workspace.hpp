@@ -82,8 +82,10 @@ struct Workspace {
   std::vector<S> Dinv;                    // [nbodies] 1 / D (ABA)
   std::vector<S> u;                       // [nbodies] tau - S^T pA (ABA)
   std::vector<S> zero;                    // [nv] zeros: the v and a of gravity() and nle()
-  // rnea_derivatives, in body coordinates: the composite variation and force of the subtree;
-  // per joint column, S and the derivative terms dv, alpha, beta of that column
+  // rnea_derivatives, in the bodies' frames (in base coordinates past max_carried_path_joints,
+  // rnea_derivatives.hpp): the composite variation and force of the subtree, beside v, a, Ic
+  // and (base coordinates) X0 above; per joint column, S and its derivative terms dv, alpha,
+  // beta
   std::vector<InertiaVariation<S>> Bc;        // [nbodies]
   std::vector<Force<S>> F;                    // [nbodies]
   std::vector<Motion<S>> s, dv, alpha, beta;  // [nv]
