@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -427,7 +428,9 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     step(fmt::format("tracing {} ({})", a, scalar));
     // the runtime's count first, so that its unsimplified trace is gone before the other's
     const OpCounts runtime = count_ops(trace<T>(a, model, false), false);
-    const Program<T> program = trace<T>(a, model, true);
+    // the kernels run in vector lanes in C++ on the host (C has none; a Cortex-M no lanes)
+    const bool vector_kernels = !dialect.c() && options.target == Target::Host;
+    const Program<T> program = trace<T>(a, model, true, default_call_kernels_from, vector_kernels);
     // the kernels are C++ templates; unrolled into C, atlas's derivatives take GCC 400 s and 5 GB
     if (dialect.c() && !program.graph.calls.empty())
       throw InputError(fmt::format(
@@ -490,9 +493,15 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                    {"arguments", arguments}});
     if (!batch_dialect.batch()) continue;
 
-    // the same program printed over lanes, and the function over any count of states
+    // the same program printed over lanes, and the function over any count of states; a batch
+    // runs its states in the lanes, so only the calls that keep the code small stay
     step(fmt::format("printing {} for batches of {}", a, options.batch));
-    const EmittedCode lanes = emit_code(program, model, options.structure, batch_dialect);
+    std::optional<Program<T>> inlined;
+    if (std::any_of(program.graph.calls.begin(), program.graph.calls.end(),
+                    [](const KernelRecord& call) { return call.for_lanes; }))
+      inlined = trace<T>(a, model, true, default_call_kernels_from, false);
+    const Program<T>& batch_program = inlined ? *inlined : program;
+    const EmittedCode lanes = emit_code(batch_program, model, options.structure, batch_dialect);
     const std::string batch_call = declaration(
                           a + "_batch", parameters(spec, scalar, false, batch_dialect), batch_dialect),
                       batch_trig_call =
@@ -517,7 +526,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
               {"trig_declaration", batch_trig_call},
               {"trig_arguments", trig_arguments},
               {"trig_fill", emit_trig_fill(model, single, lanes.angles, batch_dialect)},
-              {"counts", to_string(generated) + " per lane"},
+              {"counts", to_string(count_ops(batch_program)) + " per lane"},
               {"body", lanes.body}});
     std::map<std::string, std::string> many = many_values(spec, scalar, batch_dialect);
     many.insert({{"summary", summary}, {"declaration", many_call}, {"batch", a + "_batch"}});

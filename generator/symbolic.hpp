@@ -47,7 +47,17 @@ struct KernelRecord {
   std::vector<std::string> names;        // of the arrays read, then of those written
   std::array<long, op_kinds> ops{};      // operations its loops perform, by Op
   int first_result = -1;                 // node id of its first Result
+  bool for_lanes = false;                // recorded only as vector lanes run it faster
 };
+
+/// Where the kernels run in vector lanes (Graph::vector_kernels), calls that inlining would
+/// unroll into this many operations or more, but keep more than half of the loops' work (a
+/// floating robot's M^-1 d tau: 5,724 and 7,668 of 8,100 operations on solo12), are faster as
+/// calls; below it (ur5's 420 of 468) the unrolled code is. Measured with Google Benchmark,
+/// aba_derivatives generated both ways: solo12 floating 24% faster called, ur5 floating 11%,
+/// iiwa14 floating 5%; ur5 and iiwa14 fixed 16% and 6% slower called, and atlas fixed, whose
+/// M^-1 keeps its branches' zeros (7,200 of 17,100), 17% slower called.
+inline constexpr long vector_kernels_from = 2000;
 
 /// An input array element, e.g. q[3].
 struct InputRef {
@@ -89,6 +99,11 @@ class Graph {
   /// call's constants, folded) are recorded as calls; smaller ones, and every call of an
   /// unsimplified graph, run their loops on Sym (inlined).
   long call_kernels_from = 0;
+
+  /// Whether the code will run the kernels' loops in vector lanes (C++ on the host): then a call
+  /// is also recorded where inlining would add vector_kernels_from operations or more and keep
+  /// more than half of the loops' operations, which two lanes do in fewer steps.
+  bool vector_kernels = false;
 
   /// Records a kernel call (KernelHook), or returns false to have it inlined.
   template <class Run, class Call>
@@ -320,9 +335,13 @@ bool Graph<T>::record_call(const Call& call, const Run& run) {
       stack.push_back(n.a), stack.push_back(n.b);
     }
   }
-  if (inlined < call_kernels_from) return false;
+  long loops = 0;
+  for (const long n : record.ops) loops += n;
+  const bool faster = vector_kernels && inlined >= vector_kernels_from && 2 * inlined > loops;
+  if (inlined < call_kernels_from && !faster) return false;
 
   record.kernel = call.kernel;
+  record.for_lanes = inlined < call_kernels_from;
   record.ints.assign(call.ints.begin(), call.ints.end());
   for (const auto& table : call.tables) record.tables.emplace_back(table.begin(), table.end());
   for (const auto& array : call.inputs) {

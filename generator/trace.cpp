@@ -33,7 +33,7 @@ const AlgorithmSpec<double>& algorithm_spec(const Algorithm& name) {
 
 template <class T>
 Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool simplify,
-                 long call_kernels_from) {
+                 long call_kernels_from, bool vector_kernels) {
   const AlgorithmSpec<Sym<T>>* spec = find_algorithm<Sym<T>>(algorithm);
   if (!spec) throw std::invalid_argument("no algorithm named '" + algorithm + "'");
   Program<T> program;
@@ -41,6 +41,7 @@ Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool si
   program.graph = Graph<T>(simplify);
   Graph<T>& g = program.graph;
   g.call_kernels_from = call_kernels_from;
+  g.vector_kernels = vector_kernels;
   const Recording<T> recording(g);
   // the same conversion the check harness applies: double -> T -> constant nodes
   const Model<Sym<T>> m = model.cast<T>().template cast<Sym<T>>();
@@ -83,7 +84,7 @@ int first_non_finite_constant(const Program<T>& program) {
 
 template int first_non_finite_constant<double>(const Program<double>&);
 template int first_non_finite_constant<float>(const Program<float>&);
-template Program<double> trace<double>(const Algorithm&, const Model<double>&, bool, long);
-template Program<float> trace<float>(const Algorithm&, const Model<double>&, bool, long);
+template Program<double> trace<double>(const Algorithm&, const Model<double>&, bool, long, bool);
+template Program<float> trace<float>(const Algorithm&, const Model<double>&, bool, long, bool);
 
 }  // namespace dyngen::gen

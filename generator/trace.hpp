@@ -55,9 +55,11 @@ inline constexpr long default_call_kernels_from = 10000;
 
 /// Traces `algorithm` on the model converted to T. With simplify = false the graph holds
 /// every operation the runtime performs for the same call, for counting. Kernel calls that
-/// would add at least call_kernels_from operations inlined stay calls; the others are inlined.
+/// would add at least call_kernels_from operations inlined stay calls; with vector_kernels (code
+/// that runs the kernels in vector lanes: C++ on the host, one state at a time) so do those
+/// that vector lanes run faster (vector_kernels_from); the others are inlined.
 template <class T>
 Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool simplify = true,
-                 long call_kernels_from = default_call_kernels_from);
+                 long call_kernels_from = default_call_kernels_from, bool vector_kernels = true);
 
 }  // namespace dyngen::gen

@@ -539,6 +539,26 @@ TEST(CLanguage, RefusesAlgorithmsThatCallKernels) {
   }
 }
 
+// The calls taken for vector lanes (symbolic.hpp, vector_kernels_from) are C++'s, one state at a
+// time: C output, which has no kernels, and a batch, which runs its states in the lanes, inline
+// them, and compute the same bits (tests/generated checks both packages against the runtime)
+TEST(KernelCalls, OnlyTheScalarCppCodeCallsKernelsForLanes) {
+  const Robot robot =
+      load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", floating_base());
+  GenerateOptions options;
+  options.name = "solo";
+  options.algorithms = {"aba_derivatives"};
+  options.batch = 2;
+  std::map<std::string, std::string> text;
+  for (const GeneratedFile& f : generate(robot, options).files) text[f.name] = f.text;
+  EXPECT_NE(text["solo_dynamics.cpp"].find("dyngen::kernels::neg_product("), std::string::npos);
+  EXPECT_EQ(text["solo_batch.cpp"].find("dyngen::kernels::"), std::string::npos);
+  options.batch = 0;
+  options.language = Language::C;
+  for (const GeneratedFile& f : generate(robot, options).files)
+    EXPECT_EQ(f.text.find("kernels"), std::string::npos) << f.name;
+}
+
 // --batch prints the same program over lanes: the scalar code's statements, with each value a
 // lane and each input and trig entry read from the lane loaded before the first statement
 TEST(Batch, PrintsTheStatementsOfTheScalarCodeOverLanes) {

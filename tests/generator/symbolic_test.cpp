@@ -542,6 +542,26 @@ TEST(KernelCalls, SmallCallsAreInlinedAndBigOnesRecorded) {
   EXPECT_EQ(code.find("dqdd_dq[0] ="), std::string::npos);
 }
 
+// Where the kernels run in vector lanes, a floating quadruped's M^-1 d tau is a call: inlined it
+// would keep most of the loops' work (symbolic.hpp, vector_kernels_from); an arm's stays inlined
+TEST(KernelCalls, VectorLanesTakeTheCallsThatInliningWouldKeepMostOf) {
+  LoadOptions floating;
+  floating.floating_base = true;
+  const Model<double> solo =
+      load_robot(std::string(DYNGEN_TEST_MODELS) + "/solo12.urdf", floating).model;
+  const Program<double> called = trace<double>("aba_derivatives", solo);
+  const std::vector<std::string> both{"neg_product", "neg_product"};
+  ASSERT_EQ(kernel_calls(called), both);
+  for (const KernelRecord& call : called.graph.calls) EXPECT_TRUE(call.for_lanes);
+  const Program<double> inlined =
+      trace<double>("aba_derivatives", solo, true, default_call_kernels_from, false);
+  EXPECT_TRUE(kernel_calls(inlined).empty());
+  // a call counts its loops' operations, which the inlined trace folds in part
+  EXPECT_GT(count_ops(called).total(), count_ops(inlined).total());
+  const Model<double> ur5 = load_robot(std::string(DYNGEN_TEST_MODELS) + "/ur5.urdf").model;
+  EXPECT_TRUE(kernel_calls(trace<double>("aba_derivatives", ur5)).empty());
+}
+
 TEST(KernelCalls, CarriedDerivativePairsStayUnderTheLaneLimitOnEveryTestRobot) {
   // carried pairs are unrolled (rnea_derivatives.hpp, max_carried_path_joints): the limit on
   // path joints must keep the code of the robots it admits within what auto puts in lanes,
@@ -572,12 +592,14 @@ TEST(KernelCalls, CarriedDerivativePairsStayUnderTheLaneLimitOnEveryTestRobot) {
 }
 
 TEST(KernelCalls, OperationsByPassAddUpAndACallCountsInItsPass) {
-  // pr2 is past max_carried_path_joints, in base coordinates: its pairs are inlined by
-  // default, a call from 0 operations
+  // pr2 is past max_carried_path_joints, in base coordinates: its pairs are inlined without
+  // vector lanes' calls (a call with them), a call from 0 operations
   const Model<double> model =
       load_robot(std::string(DYNGEN_TEST_MODELS) + "/pr2.urdf", dyngen::test::independent_mimics())
           .model;
-  const Program<double> inlined = trace<double>("rnea_derivatives", model);
+  const Program<double> inlined =
+      trace<double>("rnea_derivatives", model, true, default_call_kernels_from, false);
+  ASSERT_TRUE(inlined.graph.calls.empty());
   const Program<double> called = trace<double>("rnea_derivatives", model, true, 0);
   for (const Program<double>* program : {&inlined, &called}) {
     const std::map<Pass, OpCounts> by_pass = count_ops_by_pass(*program);

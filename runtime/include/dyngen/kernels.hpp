@@ -65,45 +65,52 @@ inline void force_to_parent(const S* X, S* f) {
   f[1] = l0, f[3] = l1, f[5] = l2;
 }
 
-/// The entries of d tau / dq and d tau / dv that pair each joint column c with the columns r of
-/// its own joint and of its ancestors (rnea_derivatives.hpp has the equations). Per column,
-/// motion holds s, dv, alpha and beta and force Ic s, Bc^T s, P and Q (6 numbers each,
-/// interleaved as inner6 takes them, in the column's body's coordinates); X holds each body's
-/// transform from its parent, E then r (12 numbers). Column c is body column_body[c]'s; body
-/// b's columns are [first[b], first[b + 1]) and its parent parent[b] (-1 for a root). With
-/// carry, column c's forces are carried up its path, one transform a joint, and paired at each
-/// body with its columns; without, every term is in base coordinates and X is not read. Every
-/// other entry of the n x n row-major outputs is zero.
+/// The entries of d tau / dq and d tau / dv that pair joint column c with the columns r of its
+/// own joint and of its ancestors (rnea_derivatives.hpp has the equations). Per column, motion
+/// holds s, dv, alpha and beta and force Ic s, Bc^T s, P and Q (6 numbers each, interleaved as
+/// inner6 takes them, in the column's body's coordinates); X holds each body's transform from
+/// its parent, E then r (12 numbers). Column c is body column_body[c]'s; body b's columns are
+/// [first[b], first[b + 1]) and its parent parent[b] (-1 for a root). With carry, the column's
+/// forces are carried up its path, one transform a joint, and paired at each body with its
+/// columns; without, every term is in base coordinates and X is not read.
+template <class S>
+inline void column_pairs(int n, int carry, int c, const int* column_body, const int* first,
+                         const int* parent, const S* X, const S* motion, const S* force,
+                         S* dtau_dq, S* dtau_dv) {
+  S f[24];
+  for (int k = 0; k < 24; ++k) f[k] = force[24 * c + k];
+  const S* IcS = f;
+  const S* BcS = f + 6;
+  const S* P = f + 12;
+  const S* Q = f + 18;
+  int b = column_body[c];
+  for (int r = first[b]; r < first[b + 1]; ++r) {
+    const S* m = motion + 24 * r;  // s, dv, alpha, beta
+    dtau_dq[c * n + r] = inner6(IcS, m + 12) + inner6(BcS, m + 6);
+    dtau_dv[c * n + r] = inner6(IcS, m + 18) + inner6(BcS, m);
+  }
+  for (int j = parent[b]; j >= 0; b = j, j = parent[j]) {
+    if (carry)
+      for (int k = 0; k < 24; k += 6) force_to_parent(X + 12 * b, f + k);
+    for (int r = first[j]; r < first[j + 1]; ++r) {
+      const S* m = motion + 24 * r;
+      dtau_dq[c * n + r] = inner6(IcS, m + 12) + inner6(BcS, m + 6);
+      dtau_dv[c * n + r] = inner6(IcS, m + 18) + inner6(BcS, m);
+      dtau_dq[r * n + c] = inner6(P, m);
+      dtau_dv[r * n + c] = inner6(Q, m);
+    }
+  }
+}
+
+/// column_pairs of every column, n of them, into n x n row-major outputs whose every other
+/// entry is zero.
 template <class S>
 DYNGEN_KERNEL void derivative_pairs(int n, int carry, const int* column_body, const int* first,
                                     const int* parent, const S* X, const S* motion,
                                     const S* force, S* dtau_dq, S* dtau_dv) {
   for (int e = 0; e < n * n; ++e) dtau_dq[e] = S(0), dtau_dv[e] = S(0);
-  for (int c = 0; c < n; ++c) {
-    S f[24];
-    for (int k = 0; k < 24; ++k) f[k] = force[24 * c + k];
-    const S* IcS = f;
-    const S* BcS = f + 6;
-    const S* P = f + 12;
-    const S* Q = f + 18;
-    int b = column_body[c];
-    for (int r = first[b]; r < first[b + 1]; ++r) {
-      const S* m = motion + 24 * r;  // s, dv, alpha, beta
-      dtau_dq[c * n + r] = inner6(IcS, m + 12) + inner6(BcS, m + 6);
-      dtau_dv[c * n + r] = inner6(IcS, m + 18) + inner6(BcS, m);
-    }
-    for (int j = parent[b]; j >= 0; b = j, j = parent[j]) {
-      if (carry)
-        for (int k = 0; k < 24; k += 6) force_to_parent(X + 12 * b, f + k);
-      for (int r = first[j]; r < first[j + 1]; ++r) {
-        const S* m = motion + 24 * r;
-        dtau_dq[c * n + r] = inner6(IcS, m + 12) + inner6(BcS, m + 6);
-        dtau_dv[c * n + r] = inner6(IcS, m + 18) + inner6(BcS, m);
-        dtau_dq[r * n + c] = inner6(P, m);
-        dtau_dv[r * n + c] = inner6(Q, m);
-      }
-    }
-  }
+  for (int c = 0; c < n; ++c)
+    column_pairs(n, carry, c, column_body, first, parent, X, motion, force, dtau_dq, dtau_dv);
 }
 
 /// acc[j] += B[k][c] A[k][r0 + j] for j < W and the rows k of column c of B listed in
@@ -131,7 +138,7 @@ inline void column_times_rows(int n, int c, int r0, const int* rows_begin, const
     __builtin_memcpy(sum, acc, sizeof sum);                                                   \
     for (int e = rows_begin[c]; e < rows_begin[c + 1]; ++e) {                                 \
       const int k = rows[e];                                                                  \
-      lanes b;                                                                                \
+      lanes b{};                                                                              \
       for (int j = 0; j < LANES; ++j) b[j] = B[k * n + c];                                    \
       for (int j = 0; j < W / LANES; ++j) {                                                   \
         lanes a;                                                                              \

@@ -17,7 +17,7 @@
 //                  = S_i . (Ic_j beta_j + Bc_j s_j)                        i an ancestor of j
 // where each product pairs a force with a motion in one frame: the forces of the deeper joint
 // are carried up to the other's, X^T f per joint, as CRBA carries its columns of M
-// (kernels::derivative_pairs). In the bodies' frames each joint's S is a constant of few
+// (kernels::column_pairs). In the bodies' frames each joint's S is a constant of few
 // non-zeros and each body's inertia a constant, so the generated code keeps the robot's
 // zeros; Ic, Bc and F are carried up as CRBA carries Ic (Bc's symmetric part as an inertia of
 // mass 0, its skew part as a force).
@@ -157,11 +157,16 @@ void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S
     S* m = &ws.pair_motion[24 * c];
     put(m, ws.s[c]), put(m + 6, ws.dv[c]), put(m + 12, ws.alpha[c]), put(m + 18, ws.beta[c]);
   }
-  // carried pairs run on S, so the generator unrolls them and keeps the robot's zeros
+  // carried pairs run on S, so the generator unrolls them and keeps the robot's zeros, each
+  // column's in its body's section
   if (local) {
-    kernels::derivative_pairs(model.nv, 1, ws.column_body.data(), ws.first_column.data(),
-                              model.parent.data(), ws.pair_X.data(), ws.pair_motion.data(),
-                              ws.pair_force.data(), dtau_dq.data(), dtau_dv.data());
+    for (std::size_t e = 0; e < dtau_dq.size(); ++e) dtau_dq[e] = S(0), dtau_dv[e] = S(0);
+    for (int c = 0; c < model.nv; ++c) {
+      TraceHook<S>::enter(ws.column_body[c], Pass::Pairs);
+      kernels::column_pairs(model.nv, 1, c, ws.column_body.data(), ws.first_column.data(),
+                            model.parent.data(), ws.pair_X.data(), ws.pair_motion.data(),
+                            ws.pair_force.data(), dtau_dq.data(), dtau_dv.data());
+    }
     return;
   }
   const int ints[] = {model.nv, 0};
