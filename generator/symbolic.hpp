@@ -2,9 +2,9 @@
 // of floating-point operations that runtime<T> performs, as an expression graph.
 //
 // While recording, the graph applies only rewrites that IEEE-754 arithmetic makes exact for
-// finite values (docs/design.md): constant folding in T, x*1, x*(-1), x*0, x+0, x-0, 0-x, 0/x,
-// x/1, -(-x), negations moved out of products and quotients and absorbed by sums, and reuse
-// of identical nodes. Nothing is reassociated or fused.
+// finite values (docs/design.md): constant folding in T, x*1, x*(-1), x*0, x+0, x-0, 0-x, x-x,
+// 0/x, x/1, -(-x), negations moved out of products and quotients and absorbed by sums, and
+// reuse of identical nodes. Nothing is reassociated or fused.
 #pragma once
 
 #include <array>
@@ -208,6 +208,7 @@ int Graph<T>::binary(Op op, int x, int y) {
         if (nx) return binary(Op::Sub, y, nodes[x].a);
         break;
       case Op::Sub:
+        if (x == y) return constant(T(0));  // finite x
         if (cy && nodes[y].value == T(0)) return x;
         if (cx && nodes[x].value == T(0)) return unary(Op::Neg, y);
         if (ny) return binary(Op::Add, x, nodes[y].a);

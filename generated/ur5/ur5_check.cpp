@@ -28,11 +28,11 @@
 //     runtime:   add 2223, mul 2538, div 6, neg 18, sin 6, cos 6
 //     0 of 14 link sections in 0 shared functions
 //   rnea_derivatives
-//     generated: add 1137, mul 1272, div 0, neg 1, sin 5, cos 5
+//     generated: add 1028, mul 1156, div 0, neg 5, sin 5, cos 5
 //     runtime:   add 4939, mul 5754, div 0, neg 3, sin 6, cos 6
 //     0 of 15 link sections in 0 shared functions
 //   aba_derivatives
-//     generated: add 2147, mul 2579, div 5, neg 79, sin 5, cos 5
+//     generated: add 2038, mul 2463, div 5, neg 78, sin 5, cos 5
 //     runtime:   add 9604, mul 11127, div 12, neg 114, sin 18, cos 18
 //     0 of 43 link sections in 0 shared functions
 //   frame_placements
