@@ -194,8 +194,9 @@ void write_results(const Model<double>& model, const std::vector<EvalState>& sta
       if (with_a) rnea_derivatives<double>(model, ws, state.q, state.v, state.a, dtau_dq, dtau_dv);
       if (with_tau)
         aba_derivatives<double>(model, ws, state.q, state.v, state.tau, dqdd_dq, dqdd_dv, Minv);
-      else
-        minv<double>(model, ws, state.q, Minv);
+      // "Minv" is minv's with or without tau: aba_derivatives' own, from M's factors, can
+      // differ from it in the last bits
+      minv<double>(model, ws, state.q, Minv);
     }
     check_finite(qdd, s, "qdd");
     check_finite(tau, s, "tau");

@@ -32,9 +32,9 @@
 //     runtime:   add 4939, mul 5754, div 0, neg 3, sin 6, cos 6
 //     0 of 15 link sections in 0 shared functions
 //   aba_derivatives
-//     generated: add 2038, mul 2463, div 5, neg 78, sin 5, cos 5
-//     runtime:   add 9604, mul 11127, div 12, neg 114, sin 18, cos 18
-//     0 of 43 link sections in 0 shared functions
+//     generated: add 1615, mul 1846, div 5, neg 68, sin 5, cos 5
+//     runtime:   add 7042, mul 8315, div 6, neg 78, sin 18, cos 18
+//     0 of 47 link sections in 0 shared functions
 //   frame_placements
 //     generated: add 54, mul 81, div 0, neg 1, sin 6, cos 6
 //     runtime:   add 225, mul 330, div 0, neg 0, sin 6, cos 6

@@ -1,15 +1,20 @@
 // Partial derivatives of forward dynamics (Carpentier & Mansard, RSS 2018, sec. IV): since
 // tau = ID(q, v, FD(q, v, tau)), d qdd / d(q, v) = -M^-1 d tau / d(q, v) at qdd = FD(q, v, tau),
 // and d qdd / d tau = M^-1.
+//
+// M^-1 comes from CRBA's M factorised as L^T D L (RBDA sec. 6.5), which keeps the branches'
+// zeros, and qdd = M^-1 (tau - h) with h = nle(q, v): traced, that takes fewer operations on
+// every test robot than ABA plus minv's ABA-based recursion (docs/performance.md,
+// "Derivatives"), whose articulated inertias only the factorisation's D shares.
 #pragma once
 
 #include <span>
 #include <string_view>
 #include <utility>
 
-#include "dyngen/aba.hpp"
+#include "dyngen/crba.hpp"
 #include "dyngen/kernels.hpp"
-#include "dyngen/minv.hpp"
+#include "dyngen/rnea.hpp"
 #include "dyngen/rnea_derivatives.hpp"
 #include "dyngen/workspace.hpp"
 
@@ -17,17 +22,27 @@ namespace dyngen {
 
 /// d qdd / dq, d qdd / dv and M^-1 (= d qdd / d tau) of aba(q, v, tau), row-major nv x nv; the
 /// columns of a free joint are tangent directions, as in rnea_derivatives. The preconditions of
-/// aba and minv. No allocation.
+/// aba and minv (M positive definite). No allocation.
 template <class S>
 void aba_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                      std::span<const S> qd, std::span<const S> tau, std::span<S> dqdd_dq,
                      std::span<S> dqdd_dv, std::span<S> Minv) {
-  aba<S>(model, ws, q, qd, tau, ws.qdd);
+  const int n = model.nv;
+  crba<S>(model, ws, q, ws.H);
+  factor_ltdl<S>(n, ws.column_parent.data(), ws.H, ws.column_Dinv);
+  ltdl_inverse<S>(n, ws.column_parent.data(), ws.H, ws.column_Dinv, ws.Linv, Minv);
+  nle<S>(model, ws, q, qd, ws.h);
+  // qdd = M^-1 (tau - h)
+  TraceHook<S>::enter(-1, Pass::Product);
+  for (int i = 0; i < n; ++i) ws.h[i] = tau[i] - ws.h[i];
+  for (int i = 0; i < n; ++i) {
+    S sum = S(0);
+    for (int j = 0; j < n; ++j) sum = sum + Minv[static_cast<std::size_t>(i * n + j)] * ws.h[j];
+    ws.qdd[i] = sum;
+  }
   rnea_derivatives<S>(model, ws, q, qd, ws.qdd, ws.dtau_dq, ws.dtau_dv);
-  minv<S>(model, ws, q, Minv);
   // -M^-1 d tau over the entries of d tau that can be non-zero
   TraceHook<S>::enter(-1, Pass::Product);
-  const int n = model.nv;
   const int ints[] = {n};
   const std::span<const int> tables[] = {ws.product_begin, ws.product_rows};
   const std::string_view names[] = {"rows_begin", "rows", "Minv", "dtau", "dqdd"};

@@ -48,4 +48,55 @@ void crba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
   }
 }
 
+/// M = L^T D L in place (RBDA Table 6.3, with D apart): eliminating the deepest joint first
+/// keeps M's zeros, L_kj being non-zero only for j on k's path to the root. parent[k] is the
+/// column before k on that path (-1 at the root). M's lower triangle becomes L below the
+/// diagonal (unit diagonal implied); Dinv[k] = 1 / D_k, which equals ABA's D of that column.
+template <class S>
+void factor_ltdl(int n, const int* parent, std::span<S> M, std::span<S> Dinv) {
+  TraceHook<S>::enter(-1, Pass::Factor);
+  const auto at = [n](int i, int j) {
+    return static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
+  };
+  for (int k = n - 1; k >= 0; --k) {
+    Dinv[k] = S(1) / M[at(k, k)];
+    for (int i = parent[k]; i >= 0; i = parent[i]) {
+      const S a = M[at(k, i)] * Dinv[k];
+      for (int j = i; j >= 0; j = parent[j]) M[at(i, j)] = M[at(i, j)] - a * M[at(k, j)];
+      M[at(k, i)] = a;
+    }
+  }
+}
+
+/// M^-1 = L^-1 D^-1 L^-T from factor_ltdl's L and Dinv, written full and exactly symmetric.
+/// L^-1 keeps L's pattern (Linv_ij non-zero for j on i's path), so an entry (i, j) sums over
+/// the joints on both paths only. Linv is n x n scratch. No allocation.
+template <class S>
+void ltdl_inverse(int n, const int* parent, std::span<const S> L, std::span<const S> Dinv,
+                  std::span<S> Linv, std::span<S> Minv) {
+  TraceHook<S>::enter(-1, Pass::Factor);
+  const auto at = [n](int i, int j) {
+    return static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
+  };
+  // L Linv = 1, row by row: Linv_ik = -sum over m from i's parent up to k of L_im Linv_mk
+  for (std::size_t e = 0; e < Linv.size(); ++e) Linv[e] = S(0);
+  for (int i = 0; i < n; ++i) {
+    Linv[at(i, i)] = S(1);
+    for (int k = parent[i]; k >= 0; k = parent[k]) {
+      S sum = S(0);
+      for (int m = parent[i]; m != parent[k]; m = parent[m])
+        sum = sum - L[at(i, m)] * Linv[at(m, k)];
+      Linv[at(i, k)] = sum;
+    }
+  }
+  // Minv_ij = sum over k on j's path of Linv_ik Dinv_k Linv_jk (Linv_ik is 0 off i's path)
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      S sum = S(0);
+      for (int k = j; k >= 0; k = parent[k]) sum = sum + Linv[at(i, k)] * Dinv[k] * Linv[at(j, k)];
+      Minv[at(i, j)] = sum;
+      Minv[at(j, i)] = sum;
+    }
+}
+
 }  // namespace dyngen

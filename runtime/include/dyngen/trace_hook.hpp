@@ -21,6 +21,7 @@ enum class Pass : std::uint8_t {
   Acceleration,        // ABA: joint accelerations
   Pairs,               // derivatives: the entries of pairs of joints (a kernel)
   Product,             // derivatives: a matrix product (a kernel)
+  Factor,              // derivatives: M = L^T D L and its inverse
   Frames,              // frames: the placements and accelerations of the frames on a body
   JacobianColumns,     // frames, centre of mass, centroidal momentum: a joint's columns
 };
@@ -37,6 +38,7 @@ inline const char* pass_name(Pass p) {
     case Pass::Acceleration: return "acceleration pass";
     case Pass::Pairs: return "pairs of joints";
     case Pass::Product: return "matrix product";
+    case Pass::Factor: return "factorisation of M";
     case Pass::Frames: return "its frames";
     case Pass::JacobianColumns: return "its joint's Jacobian columns";
   }

@@ -32,14 +32,16 @@ struct Workspace {
         column_body[c] = i;
     }
     if (model.nv > max_matrix_nv) return;
-    // each column's joint's end and the column before it on its path to the root (for the rows
-    // of d tau below)
-    std::vector<int> own_end(model.nv), previous(model.nv);
+    // each column's joint's end (for the rows of d tau below) and the column before it on its
+    // path to the root
+    std::vector<int> own_end(model.nv);
+    column_parent.resize(static_cast<std::size_t>(model.nv));
     for (int i = 0; i < model.nbodies; ++i) {
       const int p = model.parent[i], k = model.v_index[i], end = k + joint_nv(model.joint_type[i]);
       for (int c = k; c < end; ++c) {
         own_end[c] = end;
-        previous[c] = c > k ? c - 1 : p < 0 ? -1 : model.v_index[p] + joint_nv(model.joint_type[p]) - 1;
+        column_parent[c] =
+            c > k ? c - 1 : p < 0 ? -1 : model.v_index[p] + joint_nv(model.joint_type[p]) - 1;
       }
     }
     const std::size_t columns =
@@ -49,11 +51,15 @@ struct Workspace {
     u_columns.resize(columns);
     dtau_dq.resize(static_cast<std::size_t>(model.nv) * static_cast<std::size_t>(model.nv));
     dtau_dv.resize(dtau_dq.size());
+    H.resize(dtau_dq.size());
+    Linv.resize(dtau_dq.size());
+    column_Dinv.resize(static_cast<std::size_t>(model.nv));
+    h.resize(static_cast<std::size_t>(model.nv));
     // the rows of d tau that can be non-zero in column c: c's path to the root, then its subtree
     product_begin.assign(1, 0);
     for (int i = 0; i < model.nbodies; ++i)
       for (int c = model.v_index[i]; c < model.v_index[i] + joint_nv(model.joint_type[i]); ++c) {
-        for (int k = own_end[c] - 1; k >= 0; k = previous[k]) product_rows.push_back(k);
+        for (int k = own_end[c] - 1; k >= 0; k = column_parent[k]) product_rows.push_back(k);
         for (int k = own_end[c]; k < subtree_end[i]; ++k) product_rows.push_back(k);
         product_begin.push_back(static_cast<int>(product_rows.size()));
       }
@@ -62,7 +68,7 @@ struct Workspace {
 
   /// Above this many degrees of freedom the workspace has no matrix buffers (they grow with
   /// nbodies * nv), and minv and aba_derivatives, which need them, cannot run: a workspace of
-  /// a 1,000-link chain holds about 100 MB of them.
+  /// a 1,000-link chain holds about 140 MB of them.
   static constexpr int max_matrix_nv = 1000;
   bool has_matrix_buffers = false;
 
@@ -100,7 +106,11 @@ struct Workspace {
   std::vector<Force<S>> pA_columns;      // [nbodies * nv] if nv <= max_matrix_nv
   std::vector<Motion<S>> a_columns;      // [nbodies * nv] if nv <= max_matrix_nv
   std::vector<S> u_columns;              // [nbodies * nv] if nv <= max_matrix_nv
-  // aba_derivatives: ABA's qdd and the derivatives of RNEA there
+  // aba_derivatives: M factorised as L^T D L (crba.hpp), each column's parent column, 1 / D
+  // and L^-1; h = nle, then tau - h; qdd = M^-1 (tau - h) and the derivatives of RNEA there
+  std::vector<int> column_parent;        // [nv] if nv <= max_matrix_nv
+  std::vector<S> H, Linv;                // [nv * nv] if nv <= max_matrix_nv
+  std::vector<S> column_Dinv, h;         // [nv] if nv <= max_matrix_nv
   std::vector<S> qdd;                    // [nv]
   std::vector<S> dtau_dq, dtau_dv;       // [nv * nv] if nv <= max_matrix_nv
   // kernels::neg_product's rows of d tau that can be non-zero, per column
