@@ -4,10 +4,12 @@
 //
 // M^-1 comes from CRBA's M factorised as L^T D L (RBDA sec. 6.5), which keeps the branches'
 // zeros, and qdd = M^-1 (tau - h) with h = nle(q, v): traced, that takes fewer operations on
-// every test robot than ABA plus minv's ABA-based recursion (docs/performance.md,
-// "Derivatives"), whose articulated inertias only the factorisation's D shares.
+// every test robot than ABA plus minv's recursion, which carry articulated inertias (21
+// numbers a body) through every joint where CRBA carries rigid ones (10) (docs/performance.md,
+// "M^-1 from CRBA's factorised M").
 #pragma once
 
+#include <cstddef>
 #include <span>
 #include <string_view>
 #include <utility>
@@ -21,8 +23,9 @@
 namespace dyngen {
 
 /// d qdd / dq, d qdd / dv and M^-1 (= d qdd / d tau) of aba(q, v, tau), row-major nv x nv; the
-/// columns of a free joint are tangent directions, as in rnea_derivatives. The preconditions of
-/// aba and minv (M positive definite). No allocation.
+/// columns of a free joint are tangent directions, as in rnea_derivatives. aba's precondition
+/// (every joint moves some inertia, so M is positive definite) and minv's matrix buffers. No
+/// allocation.
 template <class S>
 void aba_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                      std::span<const S> qd, std::span<const S> tau, std::span<S> dqdd_dq,
