@@ -229,6 +229,40 @@ TEST_P(Derivatives, AbaDerivativesMatchForwardModeDifferentiation) {
   report("aba_derivatives vs dual numbers, error / (nv eps max|entry| cond(M))", worst);
 }
 
+TEST_P(Derivatives, RootTranslationsLeaveDtauDqZeroAndTheProductSkipsThem) {
+  // aba_derivatives' product leaves out the columns of d tau / dq that a root joint's
+  // translations give (workspace.hpp): it must get the bits of the product over all their rows
+  const Model<double> model = GetParam().make();
+  const int n = model.nv;
+  Workspace<double> ws(model);
+  int translations = 0;
+  for (int i = 0; i < model.nbodies; ++i)
+    if (model.parent[i] < 0)
+      translations += model.joint_type[i] == JointType::Free        ? 3
+                      : model.joint_type[i] == JointType::Prismatic ? 1
+                                                                    : 0;
+  int skipped = 0;
+  for (int c = 0; c < n; ++c)
+    skipped += ws.product_begin[0][c] == ws.product_begin[0][c + 1] ? 1 : 0;
+  EXPECT_EQ(skipped, translations);
+  test::Random rng(10);
+  std::vector<double> dq(n * n), dv(n * n), Minv(n * n), full(n * n);
+  for (int sample = 0; sample < 5; ++sample) {
+    const test::State s = test::random_state(model, rng);
+    aba_derivatives<double>(model, ws, s.q, s.qd, s.tau, dq, dv, Minv);
+    for (int c = 0; c < n; ++c) {
+      if (ws.product_begin[0][c] != ws.product_begin[0][c + 1]) continue;
+      for (int r = 0; r < n; ++r) ASSERT_EQ(ws.dtau_dq[r * n + c], 0.0) << r << ", " << c;
+    }
+    // d tau / dv's table lists every row of the paths and subtrees
+    kernels::neg_product(n, ws.product_begin[1].data(), ws.product_rows[1].data(), Minv.data(),
+                         ws.dtau_dq.data(), full.data());
+    for (int e = 0; e < n * n; ++e)
+      ASSERT_EQ(std::signbit(dq[e]), std::signbit(full[e])) << e;
+    EXPECT_EQ(dq, full) << "sample " << sample;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Models, Derivatives, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
 

@@ -13,6 +13,7 @@
 #include <span>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "dyngen/crba.hpp"
 #include "dyngen/kernels.hpp"
@@ -47,16 +48,19 @@ void aba_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S>
   // -M^-1 d tau over the entries of d tau that can be non-zero
   TraceHook<S>::enter(-1, Pass::Product);
   const int ints[] = {n};
-  const std::span<const int> tables[] = {ws.product_begin, ws.product_rows};
   const std::string_view names[] = {"rows_begin", "rows", "Minv", "dtau", "dqdd"};
-  for (const auto& [dtau, dqdd] : {std::pair{std::span<const S>(ws.dtau_dq), dqdd_dq},
-                                   std::pair{std::span<const S>(ws.dtau_dv), dqdd_dv}}) {
-    const std::span<const S> inputs[] = {Minv, dtau};
-    const std::span<S> outputs[] = {dqdd};
+  const std::pair<std::span<const S>, std::span<S>> products[] = {{ws.dtau_dq, dqdd_dq},
+                                                                  {ws.dtau_dv, dqdd_dv}};
+  for (int d = 0; d < 2; ++d) {
+    const std::vector<int>& begin = ws.product_begin[d];
+    const std::vector<int>& rows = ws.product_rows[d];
+    const std::span<const int> tables[] = {begin, rows};
+    const std::span<const S> inputs[] = {Minv, products[d].first};
+    const std::span<S> outputs[] = {products[d].second};
     run_kernel<S>({"neg_product", ints, tables, inputs, outputs, names},
                   [&](auto in, auto out) {
-                    kernels::neg_product(n, ws.product_begin.data(), ws.product_rows.data(),
-                                         in[0].data(), in[1].data(), out[0].data());
+                    kernels::neg_product(n, begin.data(), rows.data(), in[0].data(), in[1].data(),
+                                         out[0].data());
                   });
   }
 }

@@ -70,7 +70,8 @@ void factor_ltdl(int n, const int* parent, std::span<S> M, std::span<S> Dinv) {
 
 /// M^-1 = L^-1 D^-1 L^-T from factor_ltdl's L and Dinv, written full and exactly symmetric.
 /// L^-1 keeps L's pattern (Linv_ij non-zero for j on i's path), so an entry (i, j) sums over
-/// the joints on both paths only. Linv is n x n scratch. No allocation.
+/// the joints on both paths only. Linv is n x n scratch, its entries off L's pattern
+/// untouched. No allocation.
 template <class S>
 void ltdl_inverse(int n, const int* parent, std::span<const S> L, std::span<const S> Dinv,
                   std::span<S> Linv, std::span<S> Minv) {
@@ -78,8 +79,8 @@ void ltdl_inverse(int n, const int* parent, std::span<const S> L, std::span<cons
   const auto at = [n](int i, int j) {
     return static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
   };
-  // L Linv = 1, row by row: Linv_ik = -sum over m from i's parent up to k of L_im Linv_mk
-  for (std::size_t e = 0; e < Linv.size(); ++e) Linv[e] = S(0);
+  // L Linv = 1, row by row: Linv_ik = -sum over m from i's parent up to k of L_im Linv_mk;
+  // the entries off i's path are zero and never read
   for (int i = 0; i < n; ++i) {
     Linv[at(i, i)] = S(1);
     for (int k = parent[i]; k >= 0; k = parent[k]) {
@@ -89,11 +90,19 @@ void ltdl_inverse(int n, const int* parent, std::span<const S> L, std::span<cons
       Linv[at(i, k)] = sum;
     }
   }
-  // Minv_ij = sum over k on j's path of Linv_ik Dinv_k Linv_jk (Linv_ik is 0 off i's path)
+  // Minv_ij = sum over the joints k on both paths of Linv_ik Dinv_k Linv_jk, from the paths'
+  // lowest common joint up (none: joints of different trees, 0)
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
+      int k = i;
+      for (int l = j; k != l;) {
+        if (k > l)
+          k = parent[k];
+        else
+          l = parent[l];
+      }
       S sum = S(0);
-      for (int k = j; k >= 0; k = parent[k]) sum = sum + Linv[at(i, k)] * Dinv[k] * Linv[at(j, k)];
+      for (; k >= 0; k = parent[k]) sum = sum + Linv[at(i, k)] * Dinv[k] * Linv[at(j, k)];
       Minv[at(i, j)] = sum;
       Minv[at(j, i)] = sum;
     }

@@ -55,13 +55,24 @@ struct Workspace {
     Linv.resize(dtau_dq.size());
     column_Dinv.resize(static_cast<std::size_t>(model.nv));
     h.resize(static_cast<std::size_t>(model.nv));
-    // the rows of d tau that can be non-zero in column c: c's path to the root, then its subtree
-    product_begin.assign(1, 0);
+    // the rows of d tau that can be non-zero in column c: c's path to the root, then its
+    // subtree; in d tau / dq none for a root joint's translations, which carry the whole robot
+    // through uniform gravity and change no force in the bodies' frames (rnea_derivatives gives
+    // +-0 there, and a sum over no rows the same bits as over those zeros)
+    for (auto& begin : product_begin) begin.assign(1, 0);
     for (int i = 0; i < model.nbodies; ++i)
       for (int c = model.v_index[i]; c < model.v_index[i] + joint_nv(model.joint_type[i]); ++c) {
-        for (int k = own_end[c] - 1; k >= 0; k = column_parent[k]) product_rows.push_back(k);
-        for (int k = own_end[c]; k < subtree_end[i]; ++k) product_rows.push_back(k);
-        product_begin.push_back(static_cast<int>(product_rows.size()));
+        const JointType type = model.joint_type[i];
+        const bool translation =
+            model.parent[i] < 0 && (type == JointType::Prismatic ||
+                                    (type == JointType::Free && c - model.v_index[i] < 3));
+        for (int d = 0; d < 2; ++d) {
+          if (d == 1 || !translation) {
+            for (int k = own_end[c] - 1; k >= 0; k = column_parent[k]) product_rows[d].push_back(k);
+            for (int k = own_end[c]; k < subtree_end[i]; ++k) product_rows[d].push_back(k);
+          }
+          product_begin[d].push_back(static_cast<int>(product_rows[d].size()));
+        }
       }
     has_matrix_buffers = true;
   }
@@ -113,9 +124,10 @@ struct Workspace {
   std::vector<S> column_Dinv, h;         // [nv] if nv <= max_matrix_nv
   std::vector<S> qdd;                    // [nv]
   std::vector<S> dtau_dq, dtau_dv;       // [nv * nv] if nv <= max_matrix_nv
-  // kernels::neg_product's rows of d tau that can be non-zero, per column
-  std::vector<int> product_begin;        // [nv + 1] if nv <= max_matrix_nv
-  std::vector<int> product_rows;         // [sum of path and subtree lengths] if nv <= max_matrix_nv
+  // kernels::neg_product's rows of d tau that can be non-zero, per column, of d tau / dq [0]
+  // and of d tau / dv [1]
+  std::vector<int> product_begin[2];     // [nv + 1] if nv <= max_matrix_nv
+  std::vector<int> product_rows[2];      // [sum of path and subtree lengths] if nv <= max_matrix_nv
 };
 
 }  // namespace dyngen
