@@ -40,8 +40,12 @@ std::vector<T> random_entries(std::size_t count, std::mt19937_64& rng) {
 template <class T>
 void expect_products_agree() {
   std::mt19937_64 rng(7);
-  // every block size (16, 8, 4, 2, 1) and columns with few and many non-zero rows
-  for (const int n : {1, 2, 3, 5, 7, 13, 16, 31, 36}) {
+  // every block width (1 to 24, in vectors and scalars), more than one block, and columns
+  // with few and many non-zero rows
+  std::vector<int> sizes;
+  for (int n = 1; n <= 26; ++n) sizes.push_back(n);
+  for (const int n : {31, 36, 48, 49, 50}) sizes.push_back(n);
+  for (const int n : sizes) {
     std::vector<int> rows_begin{0}, rows;
     for (int c = 0; c < n; ++c) {
       for (int k = 0; k < n; ++k)
