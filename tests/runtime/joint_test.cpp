@@ -1,6 +1,6 @@
 // The joint model (joint.hpp) against dense definitions: XJ(q) X_tree with XJ = rot(R(k, q)^T)
 // for revolute joints (R from Eigen's angle-axis) and xlt(k q) for prismatic ones; S qd and
-// S^T f.
+// S^T f, and which columns of S translate.
 #include "dyngen/joint.hpp"
 
 #include <gtest/gtest.h>
@@ -122,6 +122,7 @@ TEST(Joint, MotionAndProjection) {
       const double entries[6] = {qd};  // as many as the free-joint branch reads (-Warray-bounds)
       EXPECT_EQ(dense(joint_motion(model, 0, entries)), (S * qd).eval());
       EXPECT_EQ(dense(joint_column(model, 0, 0)), S);
+      EXPECT_EQ(is_translation_column(c.type, 0), S.head<3>().isZero());
       EXPECT_EQ(dense(joint_force(model, 0, entries)), (S * qd).eval());
       const Force<double> f{{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)},
                             {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)}};
@@ -160,7 +161,10 @@ TEST(Joint, FreeJointMatchesDefinition) {
     const Eigen::Map<const Vector6> qd6(qd);
     EXPECT_EQ(dense(joint_motion(model, 0, qd)), (S * qd6).eval());
     EXPECT_EQ(dense(joint_force(model, 0, qd)), (S * qd6).eval());
-    for (int d = 0; d < 6; ++d) EXPECT_EQ(dense(joint_column(model, 0, d)), S.col(d));
+    for (int d = 0; d < 6; ++d) {
+      EXPECT_EQ(dense(joint_column(model, 0, d)), S.col(d));
+      EXPECT_EQ(is_translation_column(JointType::Free, d), S.col(d).head<3>().isZero()) << d;
+    }
     const Force<double> f{{qd[0], qd[1], qd[2]}, {qd[3], qd[4], qd[5]}};
     double STf[6];
     joint_project(model, 0, f, STf);

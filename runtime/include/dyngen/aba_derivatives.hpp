@@ -41,7 +41,7 @@ void aba_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S>
   for (int i = 0; i < n; ++i) ws.h[i] = tau[i] - ws.h[i];
   for (int i = 0; i < n; ++i) {
     S sum = S(0);
-    for (int j = 0; j < n; ++j) sum = sum + Minv[static_cast<std::size_t>(i * n + j)] * ws.h[j];
+    for (int j = 0; j < n; ++j) sum = sum + Minv[row_major(n, i, j)] * ws.h[j];
     ws.qdd[i] = sum;
   }
   rnea_derivatives<S>(model, ws, q, qd, ws.qdd, ws.dtau_dq, ws.dtau_dv);

@@ -55,9 +55,7 @@ void crba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
 template <class S>
 void factor_ltdl(int n, const int* parent, std::span<S> M, std::span<S> Dinv) {
   TraceHook<S>::enter(-1, Pass::Factor);
-  const auto at = [n](int i, int j) {
-    return static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
-  };
+  const auto at = [n](int i, int j) { return row_major(n, i, j); };
   for (int k = n - 1; k >= 0; --k) {
     Dinv[k] = S(1) / M[at(k, k)];
     for (int i = parent[k]; i >= 0; i = parent[i]) {
@@ -76,9 +74,7 @@ template <class S>
 void ltdl_inverse(int n, const int* parent, std::span<const S> L, std::span<const S> Dinv,
                   std::span<S> Linv, std::span<S> Minv) {
   TraceHook<S>::enter(-1, Pass::Factor);
-  const auto at = [n](int i, int j) {
-    return static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
-  };
+  const auto at = [n](int i, int j) { return row_major(n, i, j); };
   // L Linv = 1, row by row: Linv_ik = -sum over m from i's parent up to k of L_im Linv_mk;
   // the entries off i's path are zero and never read
   for (int i = 0; i < n; ++i) {

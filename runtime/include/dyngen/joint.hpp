@@ -95,6 +95,12 @@ Motion<S> joint_motion(const Model<S>& model, int i, const S* qd) {
   return {{}, w};
 }
 
+/// Whether column d of S is a pure translation: a prismatic joint's, or one of a free joint's
+/// first three (joint_motion's layout, linear before angular)
+inline bool is_translation_column(JointType type, int d) {
+  return type == JointType::Prismatic || (type == JointType::Free && d < 3);
+}
+
 /// Column d of S
 template <class S>
 Motion<S> joint_column(const Model<S>& model, int i, int d) {

@@ -19,10 +19,8 @@ namespace dyngen {
 template <class S>
 void minv(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<S> Minv) {
   const int n = model.nv;
-  const auto at = [n](int body, int column) {
-    return static_cast<std::size_t>(body) * static_cast<std::size_t>(n) +
-           static_cast<std::size_t>(column);
-  };
+  // per body and column (Workspace::pA_columns), or per row and column of M^-1
+  const auto at = [n](int row, int column) { return row_major(n, row, column); };
   // kinematics: Xup_i, IA_i = I_i, pA_i = 0 for every unit torque
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Velocity);

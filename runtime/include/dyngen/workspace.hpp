@@ -5,9 +5,16 @@
 #include <cstddef>
 #include <vector>
 
+#include "dyngen/joint.hpp"
 #include "dyngen/model.hpp"
 
 namespace dyngen {
+
+/// Entry (i, j) of a row-major n x n matrix, in std::size_t since i * n overflows int from
+/// n = 46,341
+inline std::size_t row_major(int n, int i, int j) {
+  return static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
+}
 
 template <class S>
 struct Workspace {
@@ -62,10 +69,8 @@ struct Workspace {
     for (auto& begin : product_begin) begin.assign(1, 0);
     for (int i = 0; i < model.nbodies; ++i)
       for (int c = model.v_index[i]; c < model.v_index[i] + joint_nv(model.joint_type[i]); ++c) {
-        const JointType type = model.joint_type[i];
         const bool translation =
-            model.parent[i] < 0 && (type == JointType::Prismatic ||
-                                    (type == JointType::Free && c - model.v_index[i] < 3));
+            model.parent[i] < 0 && is_translation_column(model.joint_type[i], c - model.v_index[i]);
         for (int d = 0; d < 2; ++d) {
           if (d == 1 || !translation) {
             for (int k = own_end[c] - 1; k >= 0; k = column_parent[k]) product_rows[d].push_back(k);

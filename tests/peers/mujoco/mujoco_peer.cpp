@@ -368,6 +368,70 @@ std::vector<double> MujocoRobot::aba(std::span<const double> q, std::span<const 
   return {a.begin(), a.end()};
 }
 
+std::vector<double> MujocoRobot::minv(std::span<const double> q) {
+  const std::vector<double> zero(model_.nv, 0.0);
+  const Eigen::MatrixXd A = set_state(q, zero);
+  mj_fwdPosition(m_.get(), d_.get());
+  // column-major identity in, M^-1 columns out: M^-1 is symmetric, so either layout
+  Eigen::MatrixXd Minv = Eigen::MatrixXd::Identity(m_->nv, m_->nv);
+  mj_solveM(m_.get(), d_.get(), Minv.data(), Minv.data(), m_->nv);
+  const RowMajorMatrix Minv_dyngen = A.transpose() * Minv * A;
+  return {Minv_dyngen.data(), Minv_dyngen.data() + Minv_dyngen.size()};
+}
+
+std::pair<std::vector<double>, std::vector<double>> MujocoRobot::aba_derivatives(
+    std::span<const double> q, std::span<const double> v, std::span<const double> tau,
+    double eps) {
+  const int nv = m_->nv, nx = 2 * nv + m_->na;
+  const Eigen::MatrixXd A = velocity_map(q);
+  const std::vector<double> Minv = minv(q);
+  const Eigen::MatrixXd Minv_mj =
+      A * Eigen::Map<const RowMajorMatrix>(Minv.data(), nv, nv) * A.transpose();
+  const std::vector<double> qdd = aba(q, v, tau);  // leaves the state and qfrc_applied set
+
+  RowMajorMatrix transition(nx, nx);
+  // B, C and D have no columns or no rows (no actuators, no sensors), but take no null pointer
+  std::vector<double> unused(static_cast<std::size_t>(nx) * (m_->nu + m_->nsensordata) + 1);
+  const double timestep = m_->opt.timestep;
+  const int integrator = m_->opt.integrator;
+  m_->opt.timestep = 1;
+  m_->opt.integrator = mjINT_EULER;
+  mjd_transitionFD(m_.get(), d_.get(), eps, 1, transition.data(), unused.data(), unused.data(),
+                   unused.data());
+  m_->opt.timestep = timestep;
+  m_->opt.integrator = integrator;
+  const Eigen::MatrixXd Jq = transition.block(nv, 0, nv, nv);
+  const Eigen::MatrixXd Jv =
+      transition.block(nv, nv, nv, nv) - Eigen::MatrixXd::Identity(nv, nv);
+
+  // qdd = A^T (qacc(q, A v, A tau) - bias(q, v)), A and the bias depending on each free
+  // joint's rotation R: moved to R (1 + [d]x), R x changes by -R [x]x d and R^T y by
+  // [R^T y]x d
+  Eigen::MatrixXd dv_bias = Eigen::MatrixXd::Zero(nv, nv), dq_rotation = dv_bias;
+  Eigen::MatrixXd dq_outer = Eigen::MatrixXd::Zero(nv, nv);
+  for (int i = 0; i < model_.nbodies; ++i) {
+    if (model_.joint_type[i] != JointType::Free) continue;
+    const int dof = m_->jnt_dofadr[joint_[i]], iv = model_.v_index[i];
+    const Matrix3 R = rotation(q.subspan(model_.q_index[i] + 3, 4));
+    const Vector3 lin(v.data() + iv), ang(v.data() + iv + 3), force(tau.data() + iv),
+        qdd_lin(qdd.data() + iv);
+    // bias R (w x v_lin): d / dv_lin = R [w]x, d / dw = -R [v_lin]x, d / d rotation =
+    // -R [w x v_lin]x
+    dv_bias.block<3, 3>(dof, iv) = R * skew(ang);
+    dv_bias.block<3, 3>(dof, iv + 3) = -R * skew(lin);
+    // qacc's arguments A v and A tau, less the bias
+    dq_rotation.middleCols<3>(iv + 3) += Jv.middleCols<3>(dof) * (-R * skew(lin));
+    dq_rotation.middleCols<3>(iv + 3) += Minv_mj.middleCols<3>(dof) * (-R * skew(force));
+    dq_rotation.block<3, 3>(dof, iv + 3) -= -R * skew(ang.cross(lin));
+    // the outer A^T
+    dq_outer.block<3, 3>(iv, iv + 3) = skew(qdd_lin);
+  }
+  const RowMajorMatrix dqdd_dq = A.transpose() * (Jq * A + dq_rotation) + dq_outer;
+  const RowMajorMatrix dqdd_dv = A.transpose() * (Jv * A - dv_bias);
+  return {{dqdd_dq.data(), dqdd_dq.data() + dqdd_dq.size()},
+          {dqdd_dv.data(), dqdd_dv.data() + dqdd_dv.size()}};
+}
+
 int MujocoRobot::link_body(const std::string& link) const {
   const auto it = renamed_.find(link);
   return mj_name2id(m_.get(), mjOBJ_BODY, (it == renamed_.end() ? link : it->second).c_str());

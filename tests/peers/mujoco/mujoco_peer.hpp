@@ -94,6 +94,22 @@ class MujocoRobot {
   std::vector<double> aba(std::span<const double> q, std::span<const double> v,
                           std::span<const double> tau);
 
+  /// M^-1, row-major nv x nv, from mj_solveM on the identity after mj_fwdPosition: MuJoCo's
+  /// own factorisation of its own M.
+  std::vector<double> minv(std::span<const double> q);
+
+  /// d qdd / dq and d qdd / dv of forward dynamics at q, v and tau (tau as qfrc_applied), in
+  /// dyngen's coordinates (a free joint's q columns its tangent directions, q moved to
+  /// M exp(d)), row-major nv x nv, from mjd_transitionFD's centred differences with step eps of
+  /// one Euler step of length 1, whose qvel rows are d qacc / d(qpos, qvel) in MuJoCo's
+  /// coordinates (qvel + qacc; with the identity for qvel). A free joint's velocity map T and
+  /// the bias of its world-coordinate acceleration depend on its rotation, which
+  /// free_joint_tangent_terms() adds.
+  std::pair<std::vector<double>, std::vector<double>> aba_derivatives(std::span<const double> q,
+                                                                      std::span<const double> v,
+                                                                      std::span<const double> tau,
+                                                                      double eps);
+
   /// Rotation (xmat: the body's axes as columns) and origin (xpos) of each of `bodies` in the
   /// world at q, from mj_kinematics.
   std::vector<std::pair<Eigen::Matrix3d, Eigen::Vector3d>> placements(std::span<const double> q,

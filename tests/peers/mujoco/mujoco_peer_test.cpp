@@ -2,8 +2,9 @@
 // the imported models agree body by body, and the mass matrix (CRBA), inverse dynamics (RNEA)
 // and forward dynamics (ABA) agree to a norm-wise relative error of 1e-9 at seeded random
 // states, as do every link's frame placement, Jacobian and bias acceleration, and the centre of
-// mass and its Jacobian. The largest dynamics errors are printed as a table when the program
-// ends, the frames' on lines starting with "measured".
+// mass and its Jacobian; the derivatives agree with MuJoCo's finite differences of its forward
+// dynamics to 1e-5. The largest dynamics errors are printed as a table when the program ends,
+// the frames' and derivatives' on lines starting with "measured".
 #include "mujoco_peer.hpp"
 
 #include <gtest/gtest.h>
@@ -234,6 +235,50 @@ TEST_P(MujocoPeer, FramesMatch) {
       "measured %s (%d frames): frame_placements %.2e, frame_jacobians %.2e, "
       "frame_bias_accelerations %.2e, com c %.2e, com Jc %.2e\n",
       case_name(GetParam()).c_str(), nf, placements, jacobians, bias, centre, centre_jacobian);
+}
+
+// The derivatives against MuJoCo's finite differences of its own forward dynamics
+// (mjd_transitionFD, centred, step fd_step), a free joint's carried into dyngen's tangent
+// (MujocoRobot::aba_derivatives): aba_derivatives' d qdd / dq and d qdd / dv to
+// fd_tolerance; its M^-1 against MuJoCo's factorisation (mj_solveM) to tolerance; and
+// rnea_derivatives at qdd = aba(q, v, tau) against -M d qdd / d(q, v) from MuJoCo's M and
+// differences, since tau = ID(q, v, FD(q, v, tau)) for every q and v. The largest are printed
+// on a line starting with "measured".
+TEST_P(MujocoPeer, DerivativesMatchMujocosFiniteDifferences) {
+  constexpr double fd_step = 1e-4, fd_tolerance = 1e-5;
+  const gen::Robot robot = load(GetParam());
+  const Model<double>& model = robot.model;
+  MujocoRobot peer(robot.path, model, robot.locked, GetParam().floating_base);
+  Workspace<double> ws(model);
+  const int nv = model.nv;
+  std::vector<double> dqdd_dq(nv * nv), dqdd_dv(nv * nv), Minv(nv * nv), dtau_dq(nv * nv),
+      dtau_dv(nv * nv), qdd(nv);
+  Eigen::MatrixXd dqdd(nv, 2 * nv), dqdd_mj(nv, 2 * nv), dtau(nv, 2 * nv);
+  double forward = 0, inverse = 0, inverse_dynamics = 0;
+  Random rng(20261127);
+  for (int sample = 0; sample < samples; ++sample) {
+    const State s = random_state(model, rng);
+    aba_derivatives<double>(model, ws, s.q, s.qd, s.tau, dqdd_dq, dqdd_dv, Minv);
+    aba<double>(model, ws, s.q, s.qd, s.tau, qdd);
+    rnea_derivatives<double>(model, ws, s.q, s.qd, qdd, dtau_dq, dtau_dv);
+    const auto [dq_mj, dv_mj] = peer.aba_derivatives(s.q, s.qd, s.tau, fd_step);
+    dqdd << row_major(dqdd_dq, nv, nv), row_major(dqdd_dv, nv, nv);
+    dqdd_mj << row_major(dq_mj, nv, nv), row_major(dv_mj, nv, nv);
+    dtau << row_major(dtau_dq, nv, nv), row_major(dtau_dv, nv, nv);
+    forward = std::max(forward, relative_error(dqdd, dqdd_mj));
+    inverse = std::max(inverse,
+                       relative_error(row_major(Minv, nv, nv), row_major(peer.minv(s.q), nv, nv)));
+    inverse_dynamics = std::max(
+        inverse_dynamics,
+        relative_error(dtau, (-row_major(peer.crba(s.q), nv, nv) * dqdd_mj).eval()));
+  }
+  EXPECT_LE(forward, fd_tolerance);
+  EXPECT_LE(inverse, tolerance);
+  EXPECT_LE(inverse_dynamics, fd_tolerance);
+  std::printf(
+      "measured %s (nv %d): aba_derivatives d qdd against MuJoCo's differences %.2e, M^-1 "
+      "against mj_solveM %.2e; rnea_derivatives against -M d qdd %.2e\n",
+      case_name(GetParam()).c_str(), nv, forward, inverse, inverse_dynamics);
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, MujocoPeer, ::testing::ValuesIn(cases()),
