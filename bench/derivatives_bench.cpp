@@ -7,6 +7,11 @@
 // dyngen's banner counts them.
 //
 // usage: dyngen_derivatives_bench [Google Benchmark flags]
+//        dyngen_derivatives_bench --count PACKAGE FUNCTION CALLS
+//            CALLS calls of one function (a benchmark's name after the slash, or "none": an
+//            empty call, the harness's own instructions) of one package ("ur5 fixed"), each
+//            through dyngen_measured_call, the one function whose instructions
+//            scripts/callgrind_derivatives.sh collects under callgrind
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Cholesky>
@@ -26,9 +31,24 @@
 #include "trace.hpp"
 
 namespace dyngen::bench {
+struct Fixture;
+using Measure = void (*)(Fixture&, const numerics::State&);
+}  // namespace dyngen::bench
+
+// Out of line and out of reach of inlining and cloning, so that callgrind finds it by name and
+// every function pays the same way in.
+extern "C" __attribute__((noipa)) void dyngen_measured_call(dyngen::bench::Measure measure,
+                                                            dyngen::bench::Fixture& f,
+                                                            const dyngen::numerics::State& s) {
+  measure(f, s);
+}
+
+namespace dyngen::bench {
 namespace {
 
 constexpr int state_count = 64;  // cycled through, so the inputs change every call
+
+}  // namespace
 
 struct Fixture {
   const DerivativePackage* p;
@@ -53,6 +73,8 @@ struct Fixture {
     return o;
   }
 };
+
+namespace {
 
 double max_difference(const std::vector<double>& x, const std::vector<double>& y) {
   double m = 0, scale = 0;
@@ -127,8 +149,6 @@ void print_operation_counts(const std::vector<std::unique_ptr<Fixture>>& fixture
   std::fflush(stdout);
 }
 
-using Measure = void (*)(Fixture&, const numerics::State&);
-
 const std::map<std::string, Measure>& measures() {
   static const std::map<std::string, Measure> all{
       {"rnea", [](Fixture& f, const numerics::State& s) {
@@ -171,11 +191,34 @@ const std::map<std::string, Measure>& measures() {
   return all;
 }
 
+/// --count: calls of one function through dyngen_measured_call, for callgrind.
+int count_calls(const std::string& package, const std::string& function, long calls) {
+  for (const DerivativePackage& p : derivative_packages()) {
+    if (package != p.name) continue;
+    const auto found = measures().find(function);
+    if (function != "none" && found == measures().end()) {
+      std::fprintf(stderr, "dyngen_derivatives_bench: no function %s\n", function.c_str());
+      return 2;
+    }
+    const Measure measure =
+        found == measures().end() ? [](Fixture&, const numerics::State&) {} : found->second;
+    Fixture f(p);
+    check(f);
+    for (long k = 0; k < calls; ++k)
+      dyngen_measured_call(measure, f, f.states[static_cast<std::size_t>(k) % f.states.size()]);
+    return 0;
+  }
+  std::fprintf(stderr, "dyngen_derivatives_bench: no package %s\n", package.c_str());
+  return 2;
+}
+
 }  // namespace
 }  // namespace dyngen::bench
 
 int main(int argc, char** argv) {
   using namespace dyngen::bench;
+  if (argc == 5 && std::string(argv[1]) == "--count")
+    return count_calls(argv[2], argv[3], std::atol(argv[4]));
   benchmark::Initialize(&argc, argv);
   std::vector<std::unique_ptr<Fixture>> fixtures;
   for (const DerivativePackage& p : derivative_packages()) {

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Instructions and instruction-cache misses per call of the derivatives (bench/README.md,
+# "Derivatives in instructions"): builds dyngen_derivatives_bench, runs each of its functions
+# under valgrind --tool=callgrind with its cache simulation, as scripts/callgrind.sh does for the
+# values, and writes callgrind_derivatives.md: the issue's ratios (rnea_derivatives / rnea,
+# aba_derivatives / aba, finite differences / aba_derivatives) in instructions, which do not
+# depend on the host or its load, beside the misses that the times add to them.
+#
+#   scripts/callgrind_derivatives.sh              every package, into bench/results
+#   scripts/callgrind_derivatives.sh '^ur5' DIR   the packages whose names match, into DIR
+#
+# BUILD_DIR chooses the build directory (default build-bench, shared with scripts/bench.sh).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+scripts/install_deps.sh
+build=${BUILD_DIR:-build-bench}
+filter=${1:-.}
+results=${2:-bench/results}
+calls=64  # one call on each of the harness's 64 states
+functions="rnea aba rnea_derivatives aba_derivatives aba_finite_differences"
+packages=("ur5 fixed" "ur5 floating" "iiwa14 fixed" "iiwa14 floating" "solo12 fixed"
+          "solo12 floating" "atlas fixed" "atlas floating")
+start=$SECONDS
+
+echo "== configuring $build and building dyngen_derivatives_bench (many minutes the first time)"
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNGEN_BUILD_BENCH=ON >/dev/null
+cmake --build "$build" --target dyngen_derivatives_bench -j "$(nproc)"
+tool=$build/bench/dyngen_derivatives_bench
+
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+
+# instructions and level-1 instruction-cache misses inside dyngen_measured_call, per call; the
+# simulated caches as scripts/callgrind.sh gives them (this machine's level 1: 32 KB, 8 ways,
+# 64-byte lines)
+count() {
+  LD_BIND_NOW=1 valgrind --tool=callgrind --collect-atstart=no \
+    --cache-sim=yes --I1=32768,8,64 --D1=32768,8,64 --LL=1048576,16,64 \
+    --toggle-collect=dyngen_measured_call --callgrind-out-file="$scratch/out" \
+    "$tool" --count "$1" "$2" "$calls" >/dev/null 2>"$scratch/log" ||
+    { cat "$scratch/log" >&2; exit 1; }
+  grep -qx 'events: Ir Dr Dw I1mr D1mr D1mw ILmr DLmr DLmw' "$scratch/out" ||
+    { echo "callgrind_derivatives.sh: unexpected events in callgrind's output" >&2; exit 1; }
+  local ir i1
+  read -r ir _ _ i1 _ < <(sed -n 's/^summary: //p' "$scratch/out")
+  echo "$ir $i1"
+}
+
+selected=()
+for p in "${packages[@]}"; do [[ $p =~ $filter ]] && selected+=("$p"); done
+[ ${#selected[@]} -gt 0 ] || { echo "no package matches '$filter'" >&2; exit 1; }
+read -r harness_ir harness_i1 < <(count "${selected[0]}" none)
+echo "== counting ${#selected[@]} packages under callgrind (the harness: $((harness_ir / calls)) instructions a call)"
+: >"$scratch/rows"
+for p in "${selected[@]}"; do
+  echo "  $p"
+  line="$p"
+  for f in $functions; do
+    read -r ir i1 < <(count "$p" "$f")
+    line="$line|$(((ir - harness_ir) / calls))|$(((i1 - harness_i1) / calls))"
+  done
+  echo "$line" >>"$scratch/rows"
+done
+
+mkdir -p "$results"
+{
+  echo "# The derivatives in instructions"
+  echo
+  echo "\`scripts/callgrind_derivatives.sh\` (bench/README.md, \"Derivatives in instructions\"): instructions executed per call (callgrind's Ir) and level-1 instruction-cache misses per call in callgrind's simulation of this machine's cache (32 KB, 8 ways, 64-byte lines), for dyngen_derivatives_bench's packages (the generated code at -O3 with -ffp-contract=off), each function called once on each of $calls seeded random states through an out-of-line call; the harness's own $((harness_ir / calls)) instructions a call (an empty call, measured the same way) taken off. *FD* is forward differences of the generated ABA, 2n + 1 calls. The ratios are the issue's, in instructions: the times (placement_derivatives.md) add to them what the misses cost, up to half again for a function whose code outgrows the cache (docs/performance.md, \"Code size and the instruction cache\")."
+  echo
+  echo "| package | Ir: rnea | aba | rnea_derivatives | aba_derivatives | FD | rnea_derivatives / rnea | aba_derivatives / aba | FD / aba_derivatives | I1 misses: rnea | aba | rnea_derivatives | aba_derivatives |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  awk -F'|' '{
+    printf "| %s | %d | %d | %d | %d | %d | %.2f | %.2f | %.2f | %d | %d | %d | %d |\n",
+      $1, $2, $4, $6, $8, $10, $6 / $2, $8 / $4, $10 / $8, $3, $5, $7, $9
+  }' "$scratch/rows"
+} >"$results/callgrind_derivatives.md"
+echo "== wrote $results/callgrind_derivatives.md in $((SECONDS - start)) s"
