@@ -7,6 +7,8 @@
 // dyngen's banner counts them.
 //
 // usage: dyngen_derivatives_bench [Google Benchmark flags]
+//        dyngen_derivatives_bench --list
+//            the packages' names, one per line
 //        dyngen_derivatives_bench --count PACKAGE FUNCTION CALLS
 //            CALLS calls of one function (a benchmark's name after the slash, or "none": an
 //            empty call, the harness's own instructions) of one package ("ur5 fixed"), each
@@ -217,6 +219,10 @@ int count_calls(const std::string& package, const std::string& function, long ca
 
 int main(int argc, char** argv) {
   using namespace dyngen::bench;
+  if (argc == 2 && std::string(argv[1]) == "--list") {
+    for (const DerivativePackage& p : derivative_packages()) std::printf("%s\n", p.name);
+    return 0;
+  }
   if (argc == 5 && std::string(argv[1]) == "--count")
     return count_calls(argv[2], argv[3], std::atol(argv[4]));
   benchmark::Initialize(&argc, argv);

@@ -12,6 +12,7 @@
 # BUILD_DIR chooses the build directory (default build-bench, shared with scripts/bench.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/callgrind.sh
 
 scripts/install_deps.sh
 build=${BUILD_DIR:-build-bench}
@@ -28,20 +29,11 @@ tool=$build/bench/dyngen_call_counts
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 
-# instructions and level-1 instruction-cache misses collected inside dyngen_measured_call over
-# CALLS calls; LD_BIND_NOW resolves every symbol at start-up, so that no first call pays the
-# dynamic linker. The simulated caches are this machine's level 1 (32 KB, 8 ways, 64-byte lines),
-# given rather than detected, so that the counts do not depend on what valgrind recognises.
+# CALLS calls of a function: its instructions and level-1 instruction-cache misses
 count() {
-  LD_BIND_NOW=1 valgrind --tool=callgrind --collect-atstart=no \
-    --cache-sim=yes --I1=32768,8,64 --D1=32768,8,64 --LL=1048576,16,64 \
-    --toggle-collect=dyngen_measured_call --callgrind-out-file="$scratch/out" \
-    "$tool" "$@" >/dev/null 2>"$scratch/log" || { cat "$scratch/log" >&2; exit 1; }
-  # summary: Ir Dr Dw I1mr D1mr D1mw ILmr DLmr DLmw
-  grep -qx 'events: Ir Dr Dw I1mr D1mr D1mw ILmr DLmr DLmw' "$scratch/out" ||
-    { echo "callgrind.sh: unexpected events in callgrind's output" >&2; exit 1; }
-  read -r ir _ _ i1_misses _ < <(sed -n 's/^summary: //p' "$scratch/out")
-  echo "$* $ir $i1_misses" >>"$scratch/counts"
+  local counts
+  counts=$(callgrind_counts "$scratch" "$tool" "$@")
+  echo "$* $counts" >>"$scratch/counts"
 }
 
 packages=()

@@ -12,6 +12,7 @@
 # BUILD_DIR chooses the build directory (default build-bench, shared with scripts/bench.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/callgrind.sh
 
 scripts/install_deps.sh
 build=${BUILD_DIR:-build-bench}
@@ -19,8 +20,6 @@ filter=${1:-.}
 results=${2:-bench/results}
 calls=64  # one call on each of the harness's 64 states
 functions="rnea aba rnea_derivatives aba_derivatives aba_finite_differences"
-packages=("ur5 fixed" "ur5 floating" "iiwa14 fixed" "iiwa14 floating" "solo12 fixed"
-          "solo12 floating" "atlas fixed" "atlas floating")
 start=$SECONDS
 
 echo "== configuring $build and building dyngen_derivatives_bench (many minutes the first time)"
@@ -31,33 +30,25 @@ tool=$build/bench/dyngen_derivatives_bench
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 
-# instructions and level-1 instruction-cache misses inside dyngen_measured_call, per call; the
-# simulated caches as scripts/callgrind.sh gives them (this machine's level 1: 32 KB, 8 ways,
-# 64-byte lines)
+# CALLS calls of one function of one package: its instructions and level-1 instruction-cache
+# misses
 count() {
-  LD_BIND_NOW=1 valgrind --tool=callgrind --collect-atstart=no \
-    --cache-sim=yes --I1=32768,8,64 --D1=32768,8,64 --LL=1048576,16,64 \
-    --toggle-collect=dyngen_measured_call --callgrind-out-file="$scratch/out" \
-    "$tool" --count "$1" "$2" "$calls" >/dev/null 2>"$scratch/log" ||
-    { cat "$scratch/log" >&2; exit 1; }
-  grep -qx 'events: Ir Dr Dw I1mr D1mr D1mw ILmr DLmr DLmw' "$scratch/out" ||
-    { echo "callgrind_derivatives.sh: unexpected events in callgrind's output" >&2; exit 1; }
-  local ir i1
-  read -r ir _ _ i1 _ < <(sed -n 's/^summary: //p' "$scratch/out")
-  echo "$ir $i1"
+  callgrind_counts "$scratch" "$tool" --count "$1" "$2" "$calls"
 }
 
 selected=()
-for p in "${packages[@]}"; do [[ $p =~ $filter ]] && selected+=("$p"); done
+while read -r p; do [[ $p =~ $filter ]] && selected+=("$p"); done < <("$tool" --list)
 [ ${#selected[@]} -gt 0 ] || { echo "no package matches '$filter'" >&2; exit 1; }
-read -r harness_ir harness_i1 < <(count "${selected[0]}" none)
+counts=$(count "${selected[0]}" none)
+read -r harness_ir harness_i1 <<<"$counts"
 echo "== counting ${#selected[@]} packages under callgrind (the harness: $((harness_ir / calls)) instructions a call)"
 : >"$scratch/rows"
 for p in "${selected[@]}"; do
   echo "  $p"
   line="$p"
   for f in $functions; do
-    read -r ir i1 < <(count "$p" "$f")
+    counts=$(count "$p" "$f")
+    read -r ir i1 <<<"$counts"
     line="$line|$(((ir - harness_ir) / calls))|$(((i1 - harness_i1) / calls))"
   done
   echo "$line" >>"$scratch/rows"
