@@ -14,20 +14,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/lib/callgrind.sh
 
-scripts/install_deps.sh
-build=${BUILD_DIR:-build-bench}
 filter=${1:-.}
 results=${2:-bench/results}
 calls=100  # callgrind counts exactly; more calls only average over more of the 16 states
 start=$SECONDS
 
-echo "== configuring $build and building dyngen_call_counts (minutes the first time)"
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNGEN_BUILD_BENCH=ON >/dev/null
-cmake --build "$build" --target dyngen_call_counts -j "$(nproc)"
-tool=$build/bench/dyngen_call_counts
-
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
+callgrind_build dyngen_call_counts
 
 # CALLS calls of a function: its instructions and level-1 instruction-cache misses
 count() {

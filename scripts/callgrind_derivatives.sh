@@ -14,21 +14,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/lib/callgrind.sh
 
-scripts/install_deps.sh
-build=${BUILD_DIR:-build-bench}
 filter=${1:-.}
 results=${2:-bench/results}
 calls=64  # one call on each of the harness's 64 states
 functions="rnea aba rnea_derivatives aba_derivatives aba_finite_differences"
 start=$SECONDS
 
-echo "== configuring $build and building dyngen_derivatives_bench (many minutes the first time)"
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNGEN_BUILD_BENCH=ON >/dev/null
-cmake --build "$build" --target dyngen_derivatives_bench -j "$(nproc)"
-tool=$build/bench/dyngen_derivatives_bench
-
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
+callgrind_build dyngen_derivatives_bench
 
 # CALLS calls of one function of one package: its instructions and level-1 instruction-cache
 # misses

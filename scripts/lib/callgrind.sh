@@ -1,5 +1,19 @@
-# Sourced by scripts/callgrind.sh and scripts/callgrind_derivatives.sh.
+# Sourced by scripts/callgrind.sh and scripts/callgrind_derivatives.sh, from the project's root.
 #
+# callgrind_build TARGET: installs what is missing, configures BUILD_DIR (default build-bench,
+# shared with scripts/bench.sh) for the benchmarks and builds TARGET there; sets tool to it and
+# scratch to a directory removed on exit.
+callgrind_build() {
+  scripts/install_deps.sh
+  local build=${BUILD_DIR:-build-bench}
+  echo "== configuring $build and building $1 (minutes the first time)"
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNGEN_BUILD_BENCH=ON >/dev/null
+  cmake --build "$build" --target "$1" -j "$(nproc)"
+  tool=$build/bench/$1
+  scratch=$(mktemp -d)
+  trap 'rm -rf "$scratch"' EXIT
+}
+
 # callgrind_counts SCRATCH COMMAND...: prints "IR I1_MISSES", the instructions and level-1
 # instruction-cache misses collected inside dyngen_measured_call while COMMAND runs. LD_BIND_NOW
 # resolves every symbol at start-up, so that no first call pays the dynamic linker. The simulated
