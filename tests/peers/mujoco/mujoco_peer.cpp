@@ -422,7 +422,8 @@ std::pair<std::vector<double>, std::vector<double>> MujocoRobot::aba_derivatives
     // qacc's arguments A v and A tau, less the bias
     dq_rotation.middleCols<3>(iv + 3) += Jv.middleCols<3>(dof) * (-R * skew(lin));
     dq_rotation.middleCols<3>(iv + 3) += Minv_mj.middleCols<3>(dof) * (-R * skew(force));
-    dq_rotation.block<3, 3>(dof, iv + 3) -= -R * skew(ang.cross(lin));
+    // less the bias's -R [w x v_lin]x
+    dq_rotation.block<3, 3>(dof, iv + 3) += R * skew(ang.cross(lin));
     // the outer A^T
     dq_outer.block<3, 3>(iv, iv + 3) = skew(qdd_lin);
   }

@@ -103,8 +103,8 @@ class MujocoRobot {
   /// M exp(d)), row-major nv x nv, from mjd_transitionFD's centred differences with step eps of
   /// one Euler step of length 1, whose qvel rows are d qacc / d(qpos, qvel) in MuJoCo's
   /// coordinates (qvel + qacc; with the identity for qvel). A free joint's velocity map T and
-  /// the bias of its world-coordinate acceleration depend on its rotation, which
-  /// free_joint_tangent_terms() adds.
+  /// the bias of its world-coordinate acceleration depend on its rotation: their terms are
+  /// added to the differences.
   std::pair<std::vector<double>, std::vector<double>> aba_derivatives(std::span<const double> q,
                                                                       std::span<const double> v,
                                                                       std::span<const double> tau,
