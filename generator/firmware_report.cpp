@@ -96,20 +96,23 @@ std::pair<std::string, std::vector<std::string>> split_lines(const std::string& 
 
 /// Instructions qemu executed between each dyngen_call_begin() and the following
 /// dyngen_call_end(), in order: its exec log, one line per instruction ("Trace 0: host
-/// [.../pc/...] symbol"), read as it runs.
+/// [.../pc/...] symbol"), read as it runs. The log goes to the pipe through /proc rather than
+/// /dev/stdout, which a machine can lack (qemu would then write a regular file there).
 std::vector<long> instructions_per_call(const std::string& qemu, const fs::path& elf) {
   const std::string command =
-      fmt::format("{} -singlestep -d exec,nochain -D /dev/stdout -kernel {} 2>&1", qemu,
+      fmt::format("{} -singlestep -d exec,nochain -D /proc/self/fd/1 -kernel {} 2>&1", qemu,
                   shell_quoted(elf.string()));
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) throw InputError("cannot start " + command);
   std::vector<long> counts;
   bool counting = false;
   long n = 0;
+  long traced = 0;
   char line[1024];
   while (std::fgets(line, sizeof line, pipe)) {
     const std::string_view text(line);
     if (!text.starts_with("Trace ")) continue;
+    ++traced;
     const bool in_begin = text.find(" dyngen_call_begin") != std::string_view::npos;
     const bool in_end = text.find(" dyngen_call_end") != std::string_view::npos;
     if (in_begin) {
@@ -125,6 +128,9 @@ std::vector<long> instructions_per_call(const std::string& qemu, const fs::path&
   if (const int status = pclose(pipe); status != 0)
     throw InputError(fmt::format("counting instructions under qemu failed (exit status {}): {}",
                                  status, command));
+  if (traced == 0)
+    throw InputError("counting instructions under qemu: its execution log (-d exec) held no "
+                     "trace lines: " + command);
   return counts;
 }
 
