@@ -372,8 +372,7 @@ int eval_main(int argc, char** argv) {
   return run_reporting_errors("dyngen eval", [&] {
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
-    write_results(robot.model, read_states(robot.model, states), stdout, derivatives,
-                  !flags.frames.empty());
+    evaluate(robot.model, states, stdout, {derivatives, !flags.frames.empty()});
   });
 }
 

@@ -4,12 +4,17 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -34,17 +39,16 @@ using dyngen::test::floating_base;
 
 const std::string models = DYNGEN_TEST_MODELS;
 
-/// What dyngen eval writes for the states, as text: read_states and write_results in memory.
-std::string eval_text(const dyngen::Model<double>& model, const json& states,
+/// What dyngen eval writes for the states given as text, read from "<test>", in memory.
+std::string eval_raw(const dyngen::Model<double>& model, const std::string& states,
                       bool derivatives = false, bool frames = false) {
-  std::istringstream in(states.dump());
-  const std::vector<EvalState> read = read_states(model, in, "<test>");
+  std::istringstream in(states);
   char* buffer = nullptr;
   std::size_t size = 0;
   std::FILE* out = open_memstream(&buffer, &size);
   std::string error;
   try {
-    write_results(model, read, out, derivatives, frames);
+    evaluate(model, in, "<test>", out, {derivatives, frames});
   } catch (const InputError& e) {
     error = e.what();
   }
@@ -53,6 +57,11 @@ std::string eval_text(const dyngen::Model<double>& model, const json& states,
   std::free(buffer);
   if (!error.empty()) throw InputError(error);
   return text;
+}
+
+std::string eval_text(const dyngen::Model<double>& model, const json& states,
+                      bool derivatives = false, bool frames = false) {
+  return eval_raw(model, states.dump(), derivatives, frames);
 }
 
 json evaluate(const dyngen::Model<double>& model, const json& states) {
@@ -146,37 +155,196 @@ TEST(Eval, FloatingBaseNamesItsVelocityEntries) {
   EXPECT_EQ(out["joints"][6], "shoulder_pan_joint");
 }
 
-/// The message of the InputError that evaluate throws, or "" if it throws none.
-std::string error_of(const json& states, bool floating = false) {
-  const dyngen::Model<double> model =
-      load_robot(models + "/ur5.urdf", floating ? floating_base() : LoadOptions{}).model;
+/// The message of the InputError that eval throws for the states' text, or "" if it throws none.
+std::string error_of(const dyngen::Model<double>& model, const std::string& states) {
   try {
-    evaluate(model, states);
+    eval_raw(model, states);
   } catch (const InputError& e) {
     return e.what();
   }
   return "";
 }
 
-TEST(Eval, BadStatesNameTheStateAndField) {
-  const std::vector<double> six(6, 0.1), five(5, 0.1);
-  EXPECT_NE(error_of(json::object()).find("must be a JSON array"), std::string::npos);
-  EXPECT_NE(error_of(json::array({{{"v", six}, {"a", six}}})).find("state 0: no \"q\""),
-            std::string::npos);
-  EXPECT_NE(error_of(json::array({{{"q", six}, {"v", five}, {"a", six}}}))
-                .find("state 0: \"v\" must be an array of 6 numbers"),
-            std::string::npos);
-  EXPECT_NE(error_of(json::array({{{"q", six}, {"v", six}, {"a", six}},
-                                  {{"q", six}, {"v", six}, {"a", {0, 0, "x", 0, 0, 0}}}}))
-                .find("state 1: \"a\"[2] is not a finite number"),
-            std::string::npos);
-  EXPECT_NE(error_of(json::array({{{"q", six}, {"v", six}, {"acc", six}}}))
-                .find("unknown field \"acc\""),
-            std::string::npos);
-  std::vector<double> q(13, 0.0);
-  q[3] = 0.5;  // quaternion (0.5, 0, 0, 0)
-  EXPECT_NE(error_of(json::array({{{"q", q}}}), true).find("must be a unit quaternion"),
-            std::string::npos);
+TEST(Eval, BadStatesNameTheFileStateAndField) {
+  const dyngen::Model<double> model = load_robot(models + "/ur5.urdf").model;
+  const auto error = [&](const std::string& states) { return error_of(model, states); };
+  const std::string six = "[0.1, 0.1, 0.1, 0.1, 0.1, 0.1]";
+  const std::string good = R"({"q": )" + six + R"(, "v": )" + six + R"(, "a": )" + six + "}";
+  EXPECT_EQ(error("{}"), R"(<test>: the states must be a JSON array of objects {"q", "v", "a" )"
+                         R"(or "tau"}, not an object)");
+  EXPECT_EQ(error("[" + good + ", 5]"),
+            R"(<test>: state 1: must be a JSON object {"q", "v", "a" or "tau"}, not a number)");
+  EXPECT_EQ(error(R"([{"v": )" + six + R"(, "a": )" + six + "}]"), R"(<test>: state 0: no "q")");
+  EXPECT_EQ(error(R"([{"q": )" + six + R"(, "v": [0.1, 0.1, 0.1, 0.1, 0.1], "a": )" + six + "}]"),
+            R"(<test>: state 0, field "v": must be an array of 6 numbers (nv), not 5)");
+  EXPECT_EQ(error("[" + good + R"(, {"q": )" + six + R"(, "v": )" + six +
+                  R"(, "a": [0, 0, "x", 0, 0, 0]}])"),
+            R"(<test>: state 1, field "a"[2]: must be a number, not a string)");
+  EXPECT_EQ(error(R"([{"q": 5}])"),
+            R"(<test>: state 0, field "q": must be an array of 6 numbers, not a number)");
+  EXPECT_EQ(error(R"([{"q": )" + six + R"(, "acc": )" + six + "}]"),
+            R"(<test>: state 0: unknown field "acc" (expected q, v, a, tau))");
+  EXPECT_EQ(error(R"([{"q": )" + six + R"(, "q": )" + six + "}]"),
+            R"(<test>: state 0, field "q": given twice)");
+  EXPECT_EQ(error(R"([{"q": )" + six + R"(, "v": )" + six + "}]"),
+            R"(<test>: state 0: "v" without "a" or "tau")");
+  const dyngen::Model<double> floating = load_robot(models + "/ur5.urdf", floating_base()).model;
+  EXPECT_EQ(error_of(floating, R"([{"q": [0, 0, 0, 0.5, 0, 0, 0, 0, 0, 0, 0, 0, 0]}])"),
+            "<test>: state 0, field \"q\"[3..6]: the quaternion (w, x, y, z) of free joint "
+            "'floating_base' has length 0.5; it must be a unit quaternion");
+}
+
+// 1e400 and its kin overflow double as JSON is read: bad input, named like any other
+TEST(Eval, NumbersBeyondDoublesRangeNameTheFileStateAndField) {
+  const dyngen::Model<double> model = load_robot(models + "/ur5.urdf").model;
+  for (const std::string& number :
+       std::vector<std::string>{"1e400", "-1e400", "2e308", "1" + std::string(400, '0')})
+    EXPECT_EQ(error_of(model, R"([{"q": [0, 0, 0, 0, 0, 0]}, {"q": [0, 0, )" + number +
+                                  ", 0, 0, 0]}]"),
+              "<test>: state 1, field \"q\"[2]: " + number +
+                  " is beyond double's range (±1.7976931348623157e+308)");
+}
+
+// A number that underflows reads as the nearest double, 0 or a subnormal: a finite number
+TEST(Eval, NumbersThatUnderflowReadAsTheNearestDouble) {
+  const dyngen::Model<double> model = load_robot(models + "/ur5.urdf").model;
+  const auto with = [&](const std::string& number) {
+    return eval_raw(model, R"([{"q": [0, 0.3, 0.2, 0.1, 0, )" + number + "]}]");
+  };
+  EXPECT_EQ(with("1e-400"), with("0"));
+  EXPECT_EQ(with("-1e-400"), with("-0.0"));
+  EXPECT_EQ(with("5e-324"), with("4.9406564584124654e-324"));
+}
+
+// NaN and the infinities have no spelling in JSON; those of other software are syntax errors
+// named like bad numbers, with a hint
+TEST(Eval, NanAndInfinityNameTheFileStateAndField) {
+  const dyngen::Model<double> model = load_robot(models + "/ur5.urdf").model;
+  for (const char* number : {"NaN", "nan", "-NaN", "Infinity", "-Infinity", "inf", "Inf"}) {
+    const std::string error =
+        error_of(model, std::string(R"([{"q": [0, )") + number + ", 0, 0, 0, 0]}]");
+    EXPECT_EQ(error.find("<test>: state 0, field \"q\"[1]: not valid JSON at line 1, column "), 0u)
+        << error;
+    EXPECT_NE(error.find("; NaN and infinities are not JSON numbers, and eval takes finite "
+                         "numbers only"),
+              std::string::npos)
+        << error;
+  }
+  EXPECT_EQ(error_of(model, R"([{"q": [0, 0,, 0, 0, 0]}])").find("NaN"), std::string::npos);
+}
+
+TEST(Eval, InvalidUtf8InTheStatesNamesTheState) {
+  const dyngen::Model<double> model = load_robot(models + "/ur5.urdf").model;
+  EXPECT_EQ(error_of(model, "[{\"q\xff\": [0, 0, 0, 0, 0, 0]}]"),
+            "<test>: state 0: not valid JSON at line 1, column 5: syntax error while parsing "
+            "object key - invalid string: ill-formed UTF-8 byte; last read: '\"q\xff'; expected "
+            "string literal");
+  EXPECT_EQ(error_of(model, "[{\"q\": [0, 0, \"\xfe\", 0, 0, 0]}]"),
+            "<test>: state 0, field \"q\"[2]: not valid JSON at line 1, column 16: syntax error "
+            "while parsing value - invalid string: ill-formed UTF-8 byte; last read: '\"\xfe'");
+}
+
+// A legged robot's states given without --floating-base: the count, and the option that fits it
+TEST(Eval, AWrongCountSaysHowManyAndSuggestsTheFloatingBase) {
+  const dyngen::Model<double> fixed = load_robot(models + "/solo12.urdf").model;
+  const dyngen::Model<double> floating =
+      load_robot(models + "/solo12.urdf", floating_base()).model;
+  ASSERT_EQ(fixed.nq, 12);
+  const auto numbers = [](int n) {
+    return json(std::vector<double>(static_cast<std::size_t>(n), 0.0)).dump();
+  };
+  const std::string q12 = numbers(12);
+  EXPECT_EQ(error_of(fixed, R"([{"q": )" + numbers(19) + "}]"),
+            "<test>: state 0, field \"q\": must be an array of 12 numbers (nq), not 19: with "
+            "--floating-base, the root would take 7 more (position and quaternion)");
+  EXPECT_EQ(error_of(fixed, R"([{"q": )" + q12 + R"(, "v": )" + numbers(18) + R"(, "a": )" +
+                                numbers(12) + "}]"),
+            "<test>: state 0, field \"v\": must be an array of 12 numbers (nv), not 18: with "
+            "--floating-base, the root would take 6 more (linear and angular velocity)");
+  EXPECT_EQ(error_of(fixed, R"([{"q": )" + q12 + R"(, "v": )" + numbers(12) + R"(, "tau": )" +
+                                numbers(18) + "}]"),
+            "<test>: state 0, field \"tau\": must be an array of 12 numbers (nv), not 18: with "
+            "--floating-base, the root would take 6 more (force and torque)");
+  // no hint for a count that no free root explains, nor for a robot that has one
+  EXPECT_EQ(error_of(fixed, R"([{"q": )" + numbers(13) + "}]"),
+            "<test>: state 0, field \"q\": must be an array of 12 numbers (nq), not 13");
+  EXPECT_EQ(error_of(floating, R"([{"q": )" + numbers(26) + "}]"),
+            "<test>: state 0, field \"q\": must be an array of 19 numbers (nq), not 26");
+}
+
+/// A robot whose joint and link names hold invalid UTF-8 (0xfe, 0xff) and, in tip\xfe, the text
+/// of its escape: three tips at different heights, at q = 0.
+const char* invalid_names =
+    "<?xml version=\"1.0\"?>\n<robot name=\"names\">\n<link name=\"base\"/>\n"
+    "<link name=\"tip\xfe\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" "
+    "iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/></inertial></link>\n"
+    "<link name=\"tip\xff\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" "
+    "iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/></inertial></link>\n"
+    "<link name=\"tip\\xfe\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" "
+    "iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/></inertial></link>\n"
+    "<joint name=\"j\xfe\" type=\"continuous\"><parent link=\"base\"/><child link=\"tip\xfe\"/>"
+    "<origin xyz=\"0 0 1\"/><axis xyz=\"0 0 1\"/></joint>\n"
+    "<joint name=\"j\xff\" type=\"continuous\"><parent link=\"base\"/><child link=\"tip\xff\"/>"
+    "<origin xyz=\"0 0 2\"/><axis xyz=\"0 0 1\"/></joint>\n"
+    "<joint name=\"j3\" type=\"continuous\"><parent link=\"base\"/><child link=\"tip\\xfe\"/>"
+    "<origin xyz=\"0 0 3\"/><axis xyz=\"0 0 1\"/></joint>\n</robot>\n";
+
+// Names are written as safe_text writes them: the output stays valid UTF-8 (json::parse checks
+// it), and names that differ stay different keys, so that no frame overwrites another.
+TEST(Eval, InvalidUtf8NamesAreEscapedAndFramesStayApart) {
+  LoadOptions options;
+  options.frames = {"tip\xfe", "tip\xff", "tip\\xfe"};
+  const dyngen::Model<double> model = parse_robot("names.urdf", invalid_names, options).model;
+  const json out = json::parse(eval_raw(model, R"([{"q": [0, 0, 0]}])", false, true));
+  EXPECT_EQ(out["joints"], json::array({R"(j\xfe)", R"(j\xff)", "j3"}));
+  const json& frames = out["results"][0]["frames"];
+  ASSERT_EQ(frames.size(), 3u) << frames.dump();
+  EXPECT_EQ(frames[R"(tip\xfe)"]["p"], json::array({0.0, 0.0, 1.0}));
+  EXPECT_EQ(frames[R"(tip\xff)"]["p"], json::array({0.0, 0.0, 2.0}));
+  EXPECT_EQ(frames[R"(tip\x5cxfe)"]["p"], json::array({0.0, 0.0, 3.0}));
+}
+
+// Frames of the same name (the loader keeps one of each; a model built otherwise may not)
+TEST(Eval, TwoFramesOfTheSameNameAreRefused) {
+  LoadOptions options;
+  options.frames = {"tool0", "wrist_1_link"};
+  dyngen::Model<double> model = load_robot(models + "/ur5.urdf", options).model;
+  model.frames[1].name = "tool0";
+  const std::string q = R"([{"q": [0, 0, 0, 0, 0, 0]}])";
+  try {
+    eval_raw(model, q, false, true);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "--frames: two frames are named 'tool0'");
+  }
+  EXPECT_NO_THROW(eval_raw(model, q));  // without --frames, frames are not written
+}
+
+/// Two prismatic joints along x: 1e308 each puts the tip at 2e308, while M (the masses) stays
+/// finite; the tip's Jacobian, taken at its position, does not.
+const char* prismatic_pair = R"(name: prismatic_pair
+links:
+  - {name: slider, mass: 1, inertia: {ixx: 1, iyy: 1, izz: 1},
+     joint: {type: prismatic, axis: [1, 0, 0]}}
+  - {name: tip, mass: 1, inertia: {ixx: 1, iyy: 1, izz: 1},
+     joint: {type: prismatic, axis: [1, 0, 0]}}
+)";
+
+// an output of --frames that overflows names its frame (it was "frames\" J"[1][0])
+TEST(Eval, AFrameOutputThatOverflowsNamesTheFrame) {
+  LoadOptions options;
+  options.frames = {"tip"};
+  const dyngen::Model<double> model = parse_robot("pair.yaml", prismatic_pair, options).model;
+  EXPECT_NO_THROW(eval_raw(model, R"([{"q": [1e308, 0]}])", false, true));
+  try {
+    eval_raw(model, R"([{"q": [1e308, 0]}, {"q": [1e308, 1e308]}])", false, true);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find(
+                  "<test>: state 1: frame 'tip': \"J\"[1][0] is not finite ("),
+              0u)
+        << e.what();
+  }
 }
 
 // The results are written one state at a time, as the whole tree's dump(2) was: the same text,
@@ -320,8 +488,8 @@ TEST_F(EvalCommand, AnOutputThatOverflowsIsAnErrorNamingTheStateAndOutput) {
                                    {{"q", {0}}, {"v", {0}}, {"a", {1e308}}}});
   const auto r = run_dyngen({"eval", spec, "--states", "-"}, dir, states.dump());
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.err.find("dyngen eval: error: state 1: \"tau\"[0] is not finite (inf): the "
-                       "inputs overflow"),
+  EXPECT_NE(r.err.find("dyngen eval: error: <stdin>: state 1: \"tau\"[0] is not finite (inf): "
+                       "the inputs overflow"),
             std::string::npos)
       << r.err;
   // state 0 came out whole before the error; nothing of state 1 did
@@ -344,8 +512,25 @@ TEST_F(EvalCommand, AMassMatrixThatOverflowsNamesItsEntry) {
   std::ofstream(spec) << stretched_arm;
   const auto r = run_dyngen({"eval", spec, "--states", "-"}, dir, R"([{"q": [0, 1e300, 0]}])");
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.err.find("dyngen eval: error: state 0: \"M\"[0][0] is not finite ("), 0u) << r.err;
+  EXPECT_EQ(r.err.find("dyngen eval: error: <stdin>: state 0: \"M\"[0][0] is not finite ("), 0u)
+      << r.err;
   EXPECT_NE(r.err.find("): the inputs overflow\n"), std::string::npos) << r.err;
+}
+
+// A number beyond double's range is bad input (it exited 2 with nlohmann's message): exit 1,
+// naming the file, state and field; the states before it stay written, and the output lacks its
+// closing brackets, so that no reader takes it for whole
+TEST_F(EvalCommand, ANumberBeyondDoublesRangeExitsWithOne) {
+  const std::string file = (dir / "states.json").string();
+  std::ofstream(file) << R"([{"q": [0, 0, 0, 0, 0]}, {"q": [0, 0, 0, 1e400, 0]}])";
+  const auto r = run_dyngen({"eval", models + "/planar5.yaml", "--states", file}, dir);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "dyngen eval: error: " + file + ": state 1, field \"q\"[3]: 1e400 is beyond "
+                   "double's range (±1.7976931348623157e+308)\n");
+  EXPECT_NE(r.out.find("\"M\""), std::string::npos) << r.out;
+  EXPECT_THROW(json::parse(r.out), json::parse_error);
+  ASSERT_GT(r.out.size(), 6u);
+  EXPECT_EQ(r.out.substr(r.out.size() - 6), "\n    }") << "state 0 whole, nothing of state 1";
 }
 
 TEST_F(EvalCommand, StandardOutputThatCannotBeWrittenIsAnError) {
@@ -368,21 +553,78 @@ TEST_F(EvalCommand, StandardOutputThatCannotBeWrittenIsAnError) {
       << err;
 }
 
-// 200,000 states: neither their results nor the input's JSON tree are held (both took 470 MB),
-// only the states' numbers (10 MB here).
-TEST_F(EvalCommand, ManyStatesTakeLittleMemory) {
-  json states = json::array();
-  for (int k = 0; k < 200000; ++k)
-    states.push_back({{"q", {0.001 * k, 0.2}}, {"v", {0.3, 0.4}}, {"a", {0.5, 0.6}}});
-  const std::string file = (dir / "states.json").string();
-  std::ofstream(file) << states.dump();
-  states = json();
-  const auto r = run_dyngen({"eval", models + "/double_pendulum.urdf", "--states", file}, dir);
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(json::parse(r.out)["results"].size(), 200000u);
+/// The peak resident set of `dyngen eval ROBOT --states STATES` in kB (wait4's), its standard
+/// output going to `out`.
+long eval_peak_kb(const std::string& robot, const std::filesystem::path& states,
+                  const std::filesystem::path& out) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0 || dup2(fd, STDOUT_FILENO) < 0) _exit(127);
+    std::vector<std::string> args{DYNGEN_EXECUTABLE, "eval", robot, "--states", states.string()};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  int status = 0;
   rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  EXPECT_LT(usage.ru_maxrss, 150 * 1024) << "kB, the largest of dyngen's";
+  if (pid < 0 || wait4(pid, &status, 0, &usage) != pid || !WIFEXITED(status) ||
+      WEXITSTATUS(status) != 0)
+    return -1;
+  return usage.ru_maxrss;
+}
+
+// 100,000 states are read one at a time: the peak is that of no state, where holding their
+// numbers alone would take 4.8 MB (and took 19 MB as vectors).
+TEST_F(EvalCommand, ManyStatesAreNotHeld) {
+  const std::string states = (dir / "states.json").string(), none = (dir / "none.json").string();
+  std::ofstream(none) << "[]";
+  {
+    std::ofstream out(states);
+    out << "[";
+    for (int k = 0; k < 100000; ++k)
+      out << (k ? "," : "") << R"({"q": [)" << 0.001 * k << R"(, 0.2], "v": [0.3, 0.4], "a": )"
+          << "[0.5, 0.6]}";
+    out << "]";
+  }
+  const std::string robot = models + "/double_pendulum.urdf";
+  const long empty = eval_peak_kb(robot, none, dir / "out.json");
+  const long many = eval_peak_kb(robot, states, dir / "out.json");
+  ASSERT_GT(empty, 0);
+  ASSERT_GT(many, 0);
+  EXPECT_EQ(json::parse(dyngen::test::read(dir / "out.json"))["results"].size(), 100000u);
+  EXPECT_LT(many - empty, 2 * 1024) << "kB more than with no state (" << empty << " kB)";
+}
+
+// A chain just above the runtime's limit for nv^2 buffers (so that the workspace holds none):
+// one state's results are written as they are computed, so that its peak exceeds that of no
+// state by M (8 nv^2 bytes, 8 MB) and a row's text, not by the results' 30 MB of text (it was
+// 54 MB more).
+TEST_F(EvalCommand, ALargeRobotsResultsAreNotHeld) {
+  const int n = dyngen::Workspace<double>::max_matrix_nv + 1;
+  const std::string spec = (dir / "chain.yaml").string(), one = (dir / "one.json").string(),
+                    none = (dir / "none.json").string();
+  {
+    std::ofstream out(spec);
+    out << "name: chain\nlinks:\n";
+    for (int k = 0; k < n; ++k)
+      out << "  - {mass: 1, com: [0.05, 0, 0], inertia: {ixx: 0.01, iyy: 0.02, izz: 0.02}, "
+          << "length: 0.1, joint: {type: revolute, axis: [" << k % 2 << ", " << (k + 1) % 2
+          << ", 0]}}\n";
+  }
+  std::ofstream(none) << "[]";
+  std::ofstream(one) << json::array({{{"q", std::vector<double>(n, 0.1)}}}).dump();
+  const long empty = eval_peak_kb(spec, none, dir / "out.json");
+  const long peak = eval_peak_kb(spec, one, dir / "out.json");
+  ASSERT_GT(empty, 0);
+  ASSERT_GT(peak, 0);
+  const std::uintmax_t text = std::filesystem::file_size(dir / "out.json");
+  EXPECT_GT(text, 28u << 20) << "bytes of results";
+  const long M = 8L * n * n / 1024;
+  EXPECT_LT(peak - empty, M + 4 * 1024)
+      << "kB more than with no state (" << empty << " kB), where M takes " << M << " kB";
 }
 
 TEST_F(EvalCommand, PrintsJsonForStatesOnStdin) {
@@ -398,12 +640,21 @@ TEST_F(EvalCommand, PrintsJsonForStatesOnStdin) {
 TEST_F(EvalCommand, BadInputExitsNonZeroWithMessage) {
   const auto malformed = run_dyngen({"eval", models + "/ur5.urdf", "--states", "-"}, dir, "[{");
   EXPECT_EQ(malformed.status, 1);
-  EXPECT_NE(malformed.err.find("<stdin>: not valid JSON"), std::string::npos) << malformed.err;
+  EXPECT_NE(malformed.err.find("dyngen eval: error: <stdin>: state 0: not valid JSON at line 1, "
+                               "column 3: "),
+            std::string::npos)
+      << malformed.err;
   EXPECT_TRUE(malformed.out.empty());
   const auto missing =
       run_dyngen({"eval", models + "/ur5.urdf", "--states", (dir / "none.json").string()}, dir);
   EXPECT_EQ(missing.status, 1);
   EXPECT_NE(missing.err.find("cannot read the file"), std::string::npos) << missing.err;
+  // a directory opens, and fails at the first read (it exited 2 with libstdc++'s message)
+  const auto directory =
+      run_dyngen({"eval", models + "/ur5.urdf", "--states", dir.string()}, dir);
+  EXPECT_EQ(directory.status, 1);
+  EXPECT_NE(directory.err.find(dir.string() + ": cannot read: Is a directory"), std::string::npos)
+      << directory.err;
 }
 
 TEST(Eval, AbaOnMasslessJointsIsRefused) {
