@@ -24,7 +24,8 @@ warnings.simplefilter("ignore", RuntimeWarning)  # casts of inf and nan to integ
 # each function's inputs, from its signature, and its outputs' shapes for one state
 FUNCTIONS = {}
 for name in dir(d):
-    match = re.match(rf"{name}\((.*), \*, threads", getattr(getattr(d, name), "__doc__", None) or "")
+    doc = getattr(getattr(d, name), "__doc__", None) or ""
+    match = re.match(rf"{name}\((.*), \*, threads", doc)
     if match and not name.startswith("_"):
         inputs = [p.split(":")[0] for p in match.group(1).split(", ")]
         one = getattr(d, name)(*(np.zeros(d.nq if x == "q" else d.nv, d.dtype) for x in inputs))
@@ -34,10 +35,10 @@ COUNTS = [None, 0, 1, 2, 3, 4, 5, 7, 8, 9, 16, 17, 31, 33, 64]  # None: one stat
 THREADS = [1, 1, 2, 3, 4, 7, 256, 257, 100_000, 2**31 - 1, 0, -1, -2**31, 2**31, 2**63]
 DTYPES = [d.dtype, d.dtype, d.dtype.newbyteorder(), np.float32, np.float64, np.float16,
           np.longdouble, np.int64, np.complex128, object]
-INPUT_LAYOUTS = ["new", "pool", "pool", "pool", "strided", "reversed", "fortran", "broadcast", "misaligned",
-                 "readonly", "pickled", "list", "float"]  # a list or a float is refused
-OUT_LAYOUTS = ["none", "new", "pool", "pool", "pool", "strided", "fortran", "readonly", "misaligned", "pickled",
-               "list", "short", "same", "number"]
+INPUT_LAYOUTS = ["new", "pool", "pool", "pool", "strided", "reversed", "fortran", "broadcast",
+                 "misaligned", "readonly", "pickled", "list", "float"]  # a list, a float: refused
+OUT_LAYOUTS = ["none", "new", "pool", "pool", "pool", "strided", "fortran", "readonly",
+               "misaligned", "pickled", "list", "short", "same", "number"]
 POOL_ITEMS = 1024
 
 
@@ -100,7 +101,9 @@ def states_of(a, size):
         return "invalid"
     if not (a.dtype.kind == "f" and a.dtype.itemsize == d.dtype.itemsize and a.dtype.isnative):
         return "invalid"
-    return None if a.shape == (size,) else a.shape[0] if a.ndim == 2 and a.shape[1] == size else "invalid"
+    if a.shape == (size,):
+        return None
+    return a.shape[0] if a.ndim == 2 and a.shape[1] == size else "invalid"
 
 
 def valid_out(y, shape):
@@ -120,7 +123,8 @@ def make_inputs(choose, inputs, count, pool):
         shape = (size,) if n is None else (n, size)
         shape = choose([shape] * 5 + [shape[:-1] + (size + 1,), (1,) + shape, shape[1:]])
         values = np.asarray(rng.uniform(-3, 3, shape))
-        values[rng.random(shape) < choose([0, 0, 0.1, 0.5])] = choose([np.nan, np.inf, -np.inf, 1e300])
+        odd = choose([np.nan, np.inf, -np.inf, 1e300])
+        values[rng.random(shape) < choose([0, 0, 0.1, 0.5])] = odd
         args.append(place(choose, choose(INPUT_LAYOUTS), values.astype(choose(DTYPES)), pool))
         counts.add(states_of(args[-1], size))
     return args, counts.pop() if len(counts) == 1 else "invalid"
@@ -162,7 +166,8 @@ def check(name, args, out, result, before):
         assert not outs or r is outs[k], f"{name}: output {k} is not the array given as out"
     for x, b in zip(args, before):
         if not any(np.may_share_memory(x, y) for y in outs):
-            assert np.asarray(x, dtype=d.dtype).tobytes() == b.tobytes(), f"{name}: an input changed"
+            assert np.asarray(x, dtype=d.dtype).tobytes() == b.tobytes(), \
+                f"{name}: an input changed"
 
 
 def run(data):

@@ -268,7 +268,8 @@ def test_wrong_inputs_raise_clear_errors():
     other = np.float64 if single else np.float32
     with pytest.raises(TypeError, match="q: dtype"):
         d.rnea(q.astype(other), v, a)
-    with pytest.raises(TypeError, match=r"q: dtype [<>]f\d, where float\d+ in the machine's byte order"):
+    swapped = r"q: dtype [<>]f\d, where float\d+ in the machine's byte order"
+    with pytest.raises(TypeError, match=swapped):
         d.rnea(q.astype(q.dtype.newbyteorder()), v, a)
     with pytest.raises(ValueError, match=rf"v: shape \(5, {d.nv - 1}\)"):
         d.rnea(q, v[:, :-1], a)
