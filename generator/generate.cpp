@@ -294,17 +294,18 @@ std::string frame_names_definition(const Model<double>& model, const Dialect& di
 }
 
 /// The NumPy shape of one state's entries of an array, as a C++ initialiser over the package's
-/// constants: {ur5::nframes, 3, 3} for a rotation per frame, {ur5::nv, ur5::nv} for M.
+/// constants: {::ur5::nframes, 3, 3} for a rotation per frame, {::ur5::nv, ::ur5::nv} for M.
 std::string python_shape(const Extent& e, const std::string& ns) {
+  const std::string scope = "::" + ns + "::";
   std::vector<std::string> dims;
-  if (e.per_frame) dims.push_back(ns + "::nframes");
+  if (e.per_frame) dims.push_back(scope + "nframes");
   if (e.count == 9)  // a rotation, row-major
     dims.insert(dims.end(), {"3", "3"});
   else if (e.count > 1)
     dims.push_back(std::to_string(e.count));
-  if (e.size == Extent::Nq) dims.push_back(ns + "::nq");
-  if (e.size == Extent::Nv) dims.push_back(ns + "::nv");
-  if (e.size == Extent::NvNv) dims.insert(dims.end(), {ns + "::nv", ns + "::nv"});
+  if (e.size == Extent::Nq) dims.push_back(scope + "nq");
+  if (e.size == Extent::Nv) dims.push_back(scope + "nv");
+  if (e.size == Extent::NvNv) dims.insert(dims.end(), {scope + "nv", scope + "nv"});
   std::string text;
   for (const std::string& d : dims) text += (text.empty() ? "" : ", ") + d;
   return "{" + text + "}";
@@ -313,8 +314,9 @@ std::string python_shape(const Extent& e, const std::string& ns) {
 /// The shapes of an array for one and for N states, in words for a docstring: "(nv,) or (N,
 /// nv)", "(nframes, 3, 3) or (N, nframes, 3, 3)".
 std::string python_shape_words(const Extent& e, const std::string& ns) {
+  const std::string scope = "::" + ns + "::";
   std::string dims = python_shape(e, ns);
-  for (std::size_t at; (at = dims.find(ns + "::")) != std::string::npos;) dims.erase(at, ns.size() + 2);
+  for (std::size_t at; (at = dims.find(scope)) != std::string::npos;) dims.erase(at, scope.size());
   dims = dims.substr(1, dims.size() - 2);
   return fmt::format("({}{}) or (N, {})", dims, dims.find(',') == std::string::npos ? "," : "",
                      dims);
@@ -353,11 +355,18 @@ std::string python_function(const AlgorithmSpec<double>& spec, const std::string
                {"pointers", pointers},
                {"arguments", arguments},
                {"keywords", keywords},
-               {"doc", string_literal(std::string(spec.summary) + "\n" + doc)}});
+               {"doc", python_literal(std::string(spec.summary) + "\n" + doc)}});
 }
 
-/// The Python module's constants beyond nq, nv, lanes, dtype and joint_names.
-std::string python_attributes(const Model<double>& model, const std::string& ns) {
+/// A list of names for the Python module: str_list({"a", "b"}) with python_literal's literals.
+std::string python_names(const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + python_literal(name);
+  return "str_list({" + list + "})";
+}
+
+/// The Python module's constants beyond nq, nv, lanes and dtype.
+std::string python_attributes(const Model<double>& model) {
   const Vec3<double>& g = model.gravity;
   double mass = 0;
   std::string quaternions;
@@ -367,17 +376,17 @@ std::string python_attributes(const Model<double>& model, const std::string& ns)
       quaternions += fmt::format("{}{}", quaternions.empty() ? "" : ", ", model.q_index[i] + 3);
   }
   std::string text = fmt::format(
+      "    m.attr(\"joint_names\") = {};\n"
       "    m.attr(\"gravity_acceleration\") = py::make_tuple({}, {}, {});  // m/s^2\n"
       "    m.attr(\"total_mass\") = {};\n"
       "    // q[k:k + 4] is a free joint's unit quaternion (w, x, y, z) for each k\n"
       "    m.attr(\"quaternion_indices\") = py::make_tuple({});\n",
-      literal(g.x), literal(g.y), literal(g.z), literal(mass), quaternions);
-  if (!model.frames.empty())
-    text += fmt::format(
-        "    py::list frame_names;\n"
-        "    for (const char* name : {}::frame_names) frame_names.append(name);\n"
-        "    m.attr(\"frame_names\") = frame_names;\n",
-        ns);
+      python_names(velocity_names(model)), literal(g.x), literal(g.y), literal(g.z),
+      literal(mass), quaternions);
+  std::vector<std::string> frames;
+  for (const Frame<double>& f : model.frames) frames.push_back(f.name);
+  if (!frames.empty())
+    text += fmt::format("    m.attr(\"frame_names\") = {};\n", python_names(frames));
   return text;
 }
 
@@ -636,11 +645,11 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                        fill("python.cpp.in", {{"banner", code_banner},
                                               {"name", ns},
                                               {"namespace", ns},
-                                              {"robot", safe_text(robot.name)},
+                                              {"robot", python_literal(robot.name)},
                                               {"scalar", scalar},
                                               {"dtype", single ? "float32" : "float64"},
                                               {"lanes", std::to_string(options.batch)},
-                                              {"attributes", python_attributes(model, ns)},
+                                              {"attributes", python_attributes(model)},
                                               {"functions", python_functions}})});
     // the runtime's own header, verbatim: both sides compute sin and cos with the same code
     files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});

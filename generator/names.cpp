@@ -142,6 +142,19 @@ std::string string_literal(std::string_view text) {
   return out + "\"";
 }
 
+std::string python_literal(std::string_view text) {
+  std::string decoded;
+  for (std::size_t k = 0; k < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[k]);
+    std::uint32_t code = 0;
+    const std::size_t n = c < 0x80 ? 1 : utf8_sequence(text, k, code);
+    if (n == 0) decoded += fmt::format("\\x{:02x}", c);
+    else decoded.append(text.substr(k, n));
+    k += std::max<std::size_t>(n, 1);
+  }
+  return string_literal(decoded);
+}
+
 std::string identifier(std::string_view name) {
   std::string s;
   for (const char ch : name) {

@@ -33,6 +33,12 @@ inline constexpr std::size_t max_identifier = 48;
 /// Whether name can be used as it is for a namespace and file prefix: identifier(name) == name.
 bool is_identifier(std::string_view name);
 
+/// A C++ string literal for a Python str (pybind11 docstrings and names): text as Python's
+/// bytes.decode("utf-8", "backslashreplace") reads it, valid UTF-8 as it is (NUL, quotes,
+/// newlines and all) and every other byte as the four characters \xNN, in string_literal's
+/// form. The literal always holds valid UTF-8, so the str is made at import without fail.
+std::string python_literal(std::string_view text);
+
 /// Text for a gnuplot double-quoted string: safe_text, with " and \ escaped.
 std::string gnuplot_string(std::string_view text);
 

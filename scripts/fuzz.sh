@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 
 seconds=${1:-60}
 filter=${2:-}
-scripts/install_deps.sh fuzz
+scripts/install_deps.sh fuzz python
 echo "== configuring build-fuzz with clang (tests off, fuzz targets on)"
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DDYNGEN_BUILD_TESTS=OFF -DDYNGEN_BUILD_FUZZ=ON -DDYNGEN_FUZZ_SECONDS="$seconds" >/dev/null

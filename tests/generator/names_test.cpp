@@ -104,6 +104,23 @@ TEST_F(StringLiteral, TheCompilerReadsBackEveryByte) {
   EXPECT_EQ(printed, text);
 }
 
+TEST_F(StringLiteral, PythonGetsValidUtf8WithTheInvalidBytesWritten) {
+  // NUL, quotes, a backslash, controls, U+2028 and letters are text; then a lone continuation
+  // byte, a truncated sequence, an overlong '/', a surrogate, a code point past U+10FFFF, 0xFF
+  const std::string valid = std::string("q\"\\ \n\t\0 ", 8) + "\xce\xb1\xe2\x80\xa8 ";
+  const std::string text = valid + "\x80|\xe2\x80|\xc0\xaf|\xed\xa0\x80|\xf4\x90\x80\x80|\xff";
+  // what Python's bytes.decode("utf-8", "backslashreplace") gives for text, in UTF-8
+  const std::string python =
+      valid + "\\x80|\\xe2\\x80|\\xc0\\xaf|\\xed\\xa0\\x80|\\xf4\\x90\\x80\\x80|\\xff";
+  const std::string source = fmt::format(
+      "#include <cstdio>\nstatic const char s[] = {};\n"
+      "int main() {{ std::fwrite(s, 1, sizeof s - 1, stdout); }}\n",
+      python_literal(text));
+  std::string printed;
+  ASSERT_EQ(compile(dir, source, "-std=c++17", &printed), "");
+  EXPECT_EQ(printed, python);
+}
+
 class HostileNames : public ScratchTest {};
 
 TEST_F(HostileNames, NeverBecomeCode) {
