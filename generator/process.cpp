@@ -28,6 +28,12 @@ std::string shell_quoted(const std::string& s) {
   return out + "'";
 }
 
+std::string shell_word(const std::string& s) {
+  constexpr const char* plain =
+      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_./=+:,@%-";
+  return !s.empty() && s.find_first_not_of(plain) == std::string::npos ? s : shell_quoted(s);
+}
+
 std::vector<std::string> command_words(const std::string& text) {
   std::vector<std::string> words;
   constexpr const char* blanks = " \t\n\r\f\v";
@@ -110,11 +116,7 @@ std::string output_of(const std::vector<std::string>& argv, const std::string& w
   ::close(fds[1]);
   std::string command;  // as the user would type it
   for (const std::string& a : argv)
-    command += (command.empty() ? "" : " ") +
-               (!a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUV"
-                                                  "WXYZ0123456789_./=+:,@%-") == std::string::npos
-                    ? a
-                    : shell_quoted(a));
+    command.append(command.empty() ? "" : " ").append(shell_word(a));
   if (error != 0) {
     ::close(fds[0]);
     if (error == ENOENT) throw InputError(fmt::format("{}: {}: not found", what, argv[0]));

@@ -11,6 +11,9 @@ namespace dyngen::gen {
 /// s as one shell word: 'it'\''s'.
 std::string shell_quoted(const std::string& s);
 
+/// s as one shell word, quoted only if it must be: ur5.urdf, 'my robot.urdf'.
+std::string shell_word(const std::string& s);
+
 /// The words of a command held in a variable such as $CXX ("ccache g++" is two), split at
 /// blanks as make and CMake split them, without a shell: no quotes, no expansion.
 std::vector<std::string> command_words(const std::string& text);

@@ -100,8 +100,8 @@ TEST(Footprint, CompilerVariableIsWordsRunWithoutAShell) {
     EXPECT_EQ(compiler.rfind(std::string(DYNGEN_CXX_COMPILER) + " -Wall ", 0), 0u) << compiler;
   }
   // no shell reads it: $(...) reaches the compiler as two arguments, which it refuses
-  const std::filesystem::path touched =
-      std::filesystem::temp_directory_path() / ("dyngen-footprint-test-" + std::to_string(getpid()));
+  const std::filesystem::path touched = std::filesystem::temp_directory_path() /
+                                        ("dyngen-footprint-test-" + std::to_string(getpid()));
   ScopedCxx cxx(std::string(DYNGEN_CXX_COMPILER) + " $(touch " + touched.string() + ")");
   const std::string message = measuring_error();
   EXPECT_NE(message.find("failed (exit status 1): "), std::string::npos) << message;
@@ -123,8 +123,9 @@ TEST(Process, SaysNotFoundAndNamesTheSignal) {
     output_of("dyngen-no-such-command --version", "running it");
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("running it failed (not found): dyngen-no-such-command", 0),
-              0u)
+    EXPECT_EQ(
+        std::string(e.what()).rfind("running it failed (not found): dyngen-no-such-command", 0),
+        0u)
         << e.what();
   }
   try {

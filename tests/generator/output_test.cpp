@@ -375,7 +375,8 @@ TEST_F(WritePackage, WithForceAFullDiskLeavesTheDirectoryAsItWas) {
   waitpid(child, &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 1) << "no FileError";
-  EXPECT_EQ(read(message), (gen / "robot_dynamics.cpp").string() + ": cannot write: File too large");
+  EXPECT_EQ(read(message),
+            (gen / "robot_dynamics.cpp").string() + ": cannot write: File too large");
   fs::remove(message);
   EXPECT_EQ(snapshot(gen), before);
   EXPECT_EQ(entries_of(dir), std::vector<std::string>{"gen"});
