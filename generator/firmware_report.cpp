@@ -231,37 +231,37 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
     output_of(command, what);
   };
   compile("cross-compiling the package",
-          fmt::format("{} {} {} -c {} -o {}", shell_quoted(c ? cross.c : cross.cxx), package_flags,
+          fmt::format("{} {} {} -c {} -o {}", words(c ? cross.c : cross.cxx), package_flags,
                       c ? "-std=c99" : "-std=c++17", path(package_dir / source),
                       path(build / "dynamics.o")));
   compile("cross-compiling startup.c",
-          fmt::format("{} {} -std=c99 -c {} -o {}", shell_quoted(cross.c),
+          fmt::format("{} {} -std=c99 -c {} -o {}", words(cross.c),
                       words(compile_flags(cross, true)), path(build / "startup.c"),
                       path(build / "startup.o")));
   for (const auto& [image, states] :
        {std::pair{"firmware", options.states}, std::pair{"count", 1}}) {
     compile("cross-compiling the harness",
-            fmt::format("{} {} -std=c++17 -DSTATES={} {} -c {} -o {}", shell_quoted(cross.cxx),
+            fmt::format("{} {} -std=c++17 -DSTATES={} {} -c {} -o {}", words(cross.cxx),
                         cxx_flags, states, include, path(build / "harness.cpp"),
                         path(build / (std::string(image) + "_harness.o"))));
     compile("linking the image",
-            fmt::format("{} {} -nostdlib -T {} {} {} {} -lgcc -o {}", shell_quoted(cross.cxx),
+            fmt::format("{} {} -nostdlib -T {} {} {} {} -lgcc -o {}", words(cross.cxx),
                         words(cross.flags), path(build / "cortex_m.ld"), path(build / "startup.o"),
                         path(build / (std::string(image) + "_harness.o")),
                         path(build / "dynamics.o"), path(build / (std::string(image) + ".elf"))));
   }
   compile("compiling the package for the host",
-          fmt::format("{} {} {} -c {} -o {}", shell_quoted(c ? host.c : host.cxx),
+          fmt::format("{} {} {} -c {} -o {}", words(c ? host.c : host.cxx),
                       words(compile_flags(host, c)), c ? "-std=c99" : "-std=c++17",
                       path(package_dir / source), path(build / "host_dynamics.o")));
   compile("compiling the harness for the host",
-          fmt::format("{} {} -std=c++17 {} {} {} -o {}", shell_quoted(host.cxx),
+          fmt::format("{} {} -std=c++17 {} {} {} -o {}", words(host.cxx),
                       words(compile_flags(host, false)), include, path(build / "harness.cpp"),
                       path(build / "host_dynamics.o"), path(build / "host")));
 
   step(3, fmt::format("running {} states on qemu's {} and on the host", options.states, machine));
   const std::string symbols =
-      output_of(fmt::format("{} {}", shell_quoted(cross.nm), path(build / "firmware.elf")),
+      output_of(fmt::format("{} {}", words(cross.nm), path(build / "firmware.elf")),
                 "reading the image's symbols");
   std::vector<std::string> linked_forbidden;
   for (const char* name : forbidden_symbols)

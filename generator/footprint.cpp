@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "process.hpp"
 #include "robot.hpp"
@@ -88,21 +89,31 @@ std::optional<long> deepest(const CallGraph& graph, const std::string& title,
   return memo[title] = bounded ? std::optional<long>(*own->second + below) : std::nullopt;
 }
 
+/// A command's words followed by more.
+std::vector<std::string> followed_by(std::vector<std::string> words,
+                                     const std::vector<std::string>& more) {
+  words.insert(words.end(), more.begin(), more.end());
+  return words;
+}
+
 }  // namespace
 
 Toolchain toolchain(const std::string& target) {
   Toolchain t;
   if (target == "host") {
+    // as make and CMake take them: words, the first the compiler ("ccache g++", "gcc -m32")
     const char* cc = std::getenv("CC");
     const char* cxx = std::getenv("CXX");
-    t.c = cc && *cc ? cc : "cc";
-    t.cxx = cxx && *cxx ? cxx : "c++";
-    t.nm = "nm";
+    t.c = command_words(cc ? cc : "");
+    t.cxx = command_words(cxx ? cxx : "");
+    if (t.c.empty()) t.c = {"cc"};
+    if (t.cxx.empty()) t.cxx = {"c++"};
+    t.nm = {"nm"};
     return t;
   }
-  t.c = "arm-none-eabi-gcc";
-  t.cxx = "arm-none-eabi-g++";
-  t.nm = "arm-none-eabi-nm";
+  t.c = {"arm-none-eabi-gcc"};
+  t.cxx = {"arm-none-eabi-g++"};
+  t.nm = {"arm-none-eabi-nm"};
   if (target == "cortex-m4f")
     t.flags = {"-mcpu=cortex-m4", "-mfpu=fpv4-sp-d16", "-mfloat-abi=hard", "-mthumb"};
   else if (target == "cortex-m7")
@@ -129,7 +140,7 @@ Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::
                             const std::vector<std::string>& algorithms, const std::string& prefix,
                             const Toolchain& toolchain) {
   const bool c = source.ends_with(".c");
-  const std::string compiler = c ? toolchain.c : toolchain.cxx;
+  const std::vector<std::string>& compiler = c ? toolchain.c : toolchain.cxx;
   const fs::path dir =
       fs::temp_directory_path() / fmt::format("dyngen-footprint-{}", static_cast<long>(getpid()));
   struct Scratch {
@@ -143,28 +154,28 @@ Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::
   fs::create_directories(dir);
   for (const GeneratedFile& f : files) write_file(dir / f.name, f.text);
 
+  // run without a shell: $CXX is words, not a command line
   const std::string version =
-      output_of(fmt::format("{} -dumpfullversion", shell_quoted(compiler)),
-                fmt::format("measuring the code needs {} (GCC)", compiler));
+      output_of(followed_by(compiler, {"-dumpfullversion"}),
+                fmt::format("measuring the code needs {} (GCC)", fmt::join(compiler, " ")));
   const std::vector<std::string> flags = compile_flags(toolchain, c);
-  std::string command = shell_quoted(compiler);
-  for (const std::string& f : flags) command += " " + f;
   const fs::path object = dir / "package.o";
   // without identical code folding, each function keeps its own code and call graph node (GCC
   // would otherwise make aba_derivatives_shape_0 an alias of an identical aba_shape_0)
-  output_of(fmt::format("{} {} -fno-ipa-icf -fstack-usage -fcallgraph-info=su -c {} -o {}", command,
-                        c ? "-std=c99" : "-std=c++17", shell_quoted((dir / source).string()),
-                        shell_quoted(object.string())),
+  output_of(followed_by(followed_by(compiler, flags),
+                        {c ? "-std=c99" : "-std=c++17", "-fno-ipa-icf", "-fstack-usage",
+                         "-fcallgraph-info=su", "-c", (dir / source).string(), "-o",
+                         object.string()}),
             "compiling the package to measure it");
 
   Footprint footprint;
-  footprint.compiler = fmt::format("{} {}", compiler, version.substr(0, version.find('\n')));
+  footprint.compiler = fmt::format("{} {}", fmt::join(compiler, " "),
+                                   version.substr(0, version.find('\n')));
   for (const std::string& f : flags) footprint.compiler += " " + f;
 
   // code bytes by symbol: what belongs to one algorithm, and what they share
   const std::string symbols =
-      output_of(fmt::format("{} -S -C --defined-only {}", shell_quoted(toolchain.nm),
-                            shell_quoted(object.string())),
+      output_of(followed_by(toolchain.nm, {"-S", "-C", "--defined-only", object.string()}),
                 "reading the measured package's symbols");
   std::map<std::string, long> code;
   std::istringstream lines(symbols);

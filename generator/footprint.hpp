@@ -15,13 +15,13 @@ namespace dyngen::gen {
 /// How a package is compiled for one processor: GCC (the only compiler with -fcallgraph-info),
 /// its flags, and nm.
 struct Toolchain {
-  std::string c, cxx, nm;            // compiler for C, for C++, and nm
+  std::vector<std::string> c, cxx, nm;  // the commands' words: compiler for C, for C++, and nm
   std::vector<std::string> flags;    // processor flags, both languages
   std::optional<long> libgcc_frame;  // the stack of a compiler library routine (software double)
 };
 
-/// host: cc, c++ and nm (or $CC, $CXX), no library routine expected; a Cortex-M:
-/// arm-none-eabi-gcc with its -mcpu, -mfpu and -mfloat-abi.
+/// host: cc, c++ and nm (or $CC, $CXX, split into words: "ccache g++"), no library routine
+/// expected; a Cortex-M: arm-none-eabi-gcc with its -mcpu, -mfpu and -mfloat-abi.
 Toolchain toolchain(const std::string& target);
 
 /// The flags a package is compiled with for the toolchain's processor: its processor flags, -O2

@@ -390,7 +390,8 @@ std::string python_attributes(const Model<double>& model) {
   return text;
 }
 
-/// Whether an algorithm has an array per frame.
+}  // namespace
+
 bool uses_frames(const Algorithm& a) {
   const AlgorithmSpec<double>& spec = algorithm_spec(a);
   for (const auto* list : {&spec.inputs, &spec.outputs})
@@ -398,6 +399,8 @@ bool uses_frames(const Algorithm& a) {
       if (array.extent.per_frame) return true;
   return false;
 }
+
+namespace {
 
 template <class T>
 Generated generate_as(const Robot& robot, const GenerateOptions& options) {

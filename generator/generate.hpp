@@ -92,6 +92,9 @@ std::string snap_note(const Model<double>& model);
 /// dyngen report record it.
 std::string conditioning_text(const numerics::Conditioning& c, bool with_aba);
 
+/// Whether an algorithm has an array per frame (frame_placements, frame_jacobians, ...): the
+/// algorithms that --frames is for.
+bool uses_frames(const Algorithm& a);
 
 /// Traces, simplifies and prints every requested algorithm. Throws InputError when ABA is
 /// requested for a robot with a joint that moves no mass, CRBA for one above

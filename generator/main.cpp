@@ -1,6 +1,7 @@
 // dyngen ROBOT -o DIR: reads a robot, traces the runtime's algorithms for it and writes the
 // specialised code, the model tables, the bit-for-bit check and a CMakeLists.txt.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "eval.hpp"
 #include "firmware_report.hpp"
@@ -27,14 +29,10 @@ Vec3<double> parse_gravity(const std::string& text) {
   std::stringstream s(text);
   std::string item;
   while (std::getline(s, item, ',')) {
-    std::size_t used = 0;
-    double x = 0;
-    try {
-      x = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || !std::isfinite(x))
+    // strtod, not std::stod, which throws out_of_range on a subnormal number such as 1e-320
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(x))
       throw InputError(fmt::format("--gravity {}: '{}' is not a finite number", text, item));
     g.push_back(x);
   }
@@ -121,17 +119,109 @@ CLI::Validator number_in(double lo, double hi, bool integer = false) {
       fmt::format("{} in [{}, {}]", integer ? "INT" : "NUMBER", lo, hi));
 }
 
+/// The number of single-character edits that turn a into b (Levenshtein).
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+/// The option of app that `word` (not one of them) is a slip for: the nearest by edits, if at
+/// most a third of its letters differ, or one that begins with word (--floating for
+/// --floating-base); "" when none is near.
+std::string nearest_option(const CLI::App& app, const std::string& word) {
+  std::string best;
+  std::size_t best_distance = std::string::npos;
+  for (const CLI::Option* option : app.get_options()) {
+    std::vector<std::string> names;
+    for (const std::string& n : option->get_lnames()) names.push_back("--" + n);
+    for (const std::string& n : option->get_snames()) names.push_back("-" + n);
+    for (const std::string& name : names) {
+      const std::size_t d =
+          name.starts_with(word) && word.size() >= 5 ? 1 : edit_distance(word, name);
+      if (d <= name.size() / 3 && d < best_distance)
+        best = name, best_distance = d;
+    }
+  }
+  return best;
+}
+
+/// CLI11 takes the word after an option that needs a value, or after `--option=`, whatever that
+/// word is: `--frames --algorithms all` would name a link --algorithms. A value that is missing
+/// or is one of the command's options is an error here, naming both.
+void check_option_values(const CLI::App& app, int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    const std::string_view word = argv[k];
+    if (word == "--") return;
+    if (word.size() < 2 || word[0] != '-') continue;
+    const std::size_t equals = word.find('=');
+    const std::string name(word.substr(0, equals));
+    const CLI::Option* option = app.get_option_no_throw(name);
+    if (!option || option->get_items_expected_max() == 0) continue;  // a flag
+    if (equals != std::string_view::npos) {
+      if (equals + 1 == word.size())
+        throw CLI::ValidationError(name, "no value after the =");
+      continue;
+    }
+    if (k + 1 < argc && argv[k + 1][0] == '-') {
+      const std::string_view next = argv[k + 1];
+      if (app.get_option_no_throw(std::string(next.substr(0, next.find('=')))))
+        throw CLI::ValidationError(name,
+                                   fmt::format("no value before {}, which is an option", next));
+    }
+    ++k;
+  }
+}
+
+/// The message of a command-line mistake: an unknown option first (with the one it is a slip
+/// for), as the other errors often follow from it; an argument left over after the robot with
+/// what was taken as the robot.
+std::string parse_error_text(const CLI::App& app, const CLI::ParseError& e) {
+  std::vector<std::string> unknown, extra;
+  for (const std::string& word : app.remaining(false)) {
+    // "-1,0,0" and "-.5" are numbers, not options
+    const bool option = word.size() > 1 && word[0] == '-' &&
+                        !std::isdigit(static_cast<unsigned char>(word[1])) && word[1] != '.';
+    if (!option) {
+      extra.push_back(word);
+      continue;
+    }
+    const std::string name = word.substr(0, word.find('='));
+    const std::string near = nearest_option(app, name);
+    unknown.push_back(near.empty() ? name : fmt::format("{} (did you mean {}?)", name, near));
+  }
+  if (!unknown.empty())
+    return fmt::format("unknown option{} {}", unknown.size() > 1 ? "s" : "",
+                       fmt::join(unknown, ", "));
+  const CLI::Option* robot = app.get_option_no_throw("robot");
+  if (!extra.empty() && robot && robot->count() > 0)
+    return fmt::format("{} ({} reads one robot file, here '{}'; a list is one value, "
+                       "comma-separated: --frames tool0,ee_link)",
+                       e.what(), app.get_name(), robot->results().front());
+  return e.what();
+}
+
 /// Parses the command line. --help and --version print and give exit status 0; a mistake is
 /// reported like bad input: `COMMAND: error: ...` and exit status 1. Empty when the command is to
 /// run.
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
   try {
+    check_option_values(app, argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     fmt::print(stderr, "{}: error: {}\nRun '{} --help' for the options.\n", app.get_name(),
-               e.what(), app.get_name());
+               safe_text(parse_error_text(app, e)), app.get_name());
     return 1;
   }
   return std::nullopt;
@@ -148,6 +238,31 @@ std::string package_dir() {
   const std::filesystem::path installed = bin.parent_path() / "lib" / "cmake" / "dyngen";
   if (std::filesystem::exists(installed / "dyngenConfig.cmake")) return installed.string();
   return "<dyngen build directory>";
+}
+
+/// The items of a comma-separated list, blanks around each trimmed: "a, b" is a and b.
+std::vector<std::string> split_names(const std::string& text) {
+  std::vector<std::string> names;
+  std::stringstream s(text);
+  for (std::string item; std::getline(s, item, ',');) {
+    const std::size_t first = item.find_first_not_of(" \t"), last = item.find_last_not_of(" \t");
+    names.push_back(first == std::string::npos ? "" : item.substr(first, last - first + 1));
+  }
+  if (text.empty() || text.back() == ',') names.push_back("");  // getline drops the last
+  return names;
+}
+
+/// --frames' check: a comma-separated list of links with none empty ("a,,b", ",", "a,").
+CLI::Validator link_list() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const std::vector<std::string> names = split_names(text);
+        if (std::find(names.begin(), names.end(), "") == names.end()) return "";
+        return fmt::format("'{}' has an empty name: give links separated by commas, such as "
+                           "tool0,ee_link",
+                           text);
+      },
+      "");  // no description: --help shows the option's type name alone
 }
 
 /// The options that choose the model, shared by generation and eval.
@@ -170,10 +285,12 @@ struct ModelFlags {
     app.add_flag("--lock-massless", lock_massless, "lock every joint whose subtree has no mass");
     app.add_flag("--mimic-independent", mimic_independent,
                  "accept URDF mimic joints as independent joints (by default they are refused)");
-    app.add_option("--frames", frames,
-                   "comma-separated links whose frames the frame functions compute, in this "
-                   "order (default: the leaf links, such as tool flanges and feet)")
-        ->delimiter(',')
+    // one value, split here: a vector option would take the robot after it as a link too
+    app.add_option_function<std::string>(
+           "--frames", [this](const std::string& text) { frames = split_names(text); },
+           "comma-separated links whose frames the frame functions compute, in this order "
+           "(default: " + std::string(default_frames_rule) + ")")
+        ->check(link_list())
         ->type_name("LINKS");
     app.add_option("--snap", snap,
                    "make rotation and axis entries within TOL of 0 or +-1, and inertia products "
@@ -204,10 +321,30 @@ struct ModelFlags {
     if (lock_massless) out += " --lock-massless";
     if (mimic_independent) out += " --mimic-independent";
     if (snap) out += fmt::format(" --snap {}", *snap);
-    if (!frames.empty()) out += " --frames " + comma_list(frames);
     return out;
   }
 };
+
+/// The chosen frames as the banner records them, " --frames A,B", where a function computes
+/// frames; and a warning when --frames names links and none does.
+std::string frames_text(const Robot& robot, const ModelFlags& flags,
+                        const std::vector<Algorithm>& algorithms, const char* command) {
+  if (std::any_of(algorithms.begin(), algorithms.end(), uses_frames)) {
+    std::vector<std::string> names;
+    for (const Frame<double>& f : robot.model.frames) names.push_back(f.name);
+    return " --frames " + comma_list(names);
+  }
+  if (!flags.frames.empty()) {
+    std::vector<Algorithm> computing;
+    for (const Algorithm& a : algorithm_names())
+      if (uses_frames(a)) computing.push_back(a);
+    fmt::print(stderr,
+               "{}: warning: --frames is ignored: none of the algorithms computes frames (add "
+               "one of {} to --algorithms)\n",
+               command, fmt::join(computing, ", "));
+  }
+  return "";
+}
 
 /// The options that choose the code, shared by generation and firmware-report.
 struct CodeFlags {
@@ -238,16 +375,20 @@ struct CodeFlags {
         ->check(CLI::IsMember({"c++", "c"}))
         ->capture_default_str();
     app.add_option("--structure", structure,
-                   fmt::format("shared: sections of links whose code differs only in "
-                               "constants share one function over a table of them (smaller "
-                               "code, the same operations and bits); unrolled: every link's "
-                               "code in place; auto: on the host, shared in functions of {} "
-                               "operations or more and unrolled below (where the code fits the "
-                               "instruction cache), on a Cortex-M shared (flash); lanes (C++): "
-                               "unrolled, with the sections of limbs at the same depth that do "
-                               "the same operations (a quadruped's legs, a humanoid's left and "
-                               "right limbs) computed together in vector statements of 2 or 4 "
-                               "lanes, the same bits",
+                   fmt::format("shared: each section of {} operations or more (one link's work "
+                               "in one pass) whose operations match another's up to constants "
+                               "calls a function shared with it, over a table of their "
+                               "constants; unrolled: every section in place; lanes (C++): every "
+                               "section in place, and the sections of limbs at the same depth "
+                               "that perform the same operations (a quadruped's legs, a "
+                               "humanoid's left and right arms) computed together in vector "
+                               "statements, 2 doubles or 4 floats to a statement; auto: on the "
+                               "host, lanes (in C++) where a function's limbs repeat and it has "
+                               "fewer than {} operations (as the banner counts them), else "
+                               "shared in functions of {} operations or more and unrolled "
+                               "below; on a Cortex-M target, shared (flash). The same "
+                               "operations and bits in each",
+                               min_shared_operations, max_lane_function_operations,
                                min_shared_function_operations))
         ->check(CLI::IsMember({"auto", "unrolled", "shared", "lanes"}))
         ->capture_default_str();
@@ -280,6 +421,9 @@ struct CodeFlags {
 
   /// Checks --name and --batch before the robot is read (so that a mistake costs no time).
   void check_options() const {
+    if (structure == "lanes" && lang == "c")
+      throw InputError("--structure lanes: vector lanes are C++ (GCC's and clang's vector "
+                       "types); with --lang c choose auto, shared or unrolled");
     if ((batch > 0 || python) && lang == "c")
       throw InputError(fmt::format("{}: batch functions are C++ (GCC's and clang's vector types); "
                                    "generate them with --lang c++",
@@ -293,7 +437,9 @@ struct CodeFlags {
           name, max_identifier, identifier(name)));
   }
 
-  GenerateOptions options(const Robot& robot, const ModelFlags& model) const {
+  /// The options for generate(); `command` names who warns about --frames (frames_text).
+  GenerateOptions options(const Robot& robot, const ModelFlags& model,
+                          const char* command) const {
     GenerateOptions options;
     options.algorithms = with_jacobian_frame(parse_algorithms(algorithms, algorithm_names()),
                                              jacobian_frame, algorithm_names());
@@ -318,8 +464,8 @@ struct CodeFlags {
                     comma_list(options.algorithms), scalar, lang, structure, target, g.x, g.y,
                     g.z, options.name) +
         (options.batch > 0 ? fmt::format(" --batch {}", options.batch) : "") +
-        (python ? " --python" : "") +
-        model.text();
+        (python ? " --python" : "") + model.text() +
+        frames_text(robot, model, options.algorithms, command);
     return options;
   }
 };
@@ -413,13 +559,14 @@ int report_main(int argc, char** argv) {
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen report", [&] {
     options.algorithms = parse_algorithms(algorithms, algorithm_names());
-    options.model_flags = flags.text();
     options.package_dir = package_dir();
     options.command = "dyngen report";
     for (int k = 1; k < argc; ++k) options.command += " " + std::string(argv[k]);
     if (!options.quiet) fmt::print("dyngen {} report: reading {}\n", version, input);
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    options.model_flags =
+        flags.text() + frames_text(robot, flags, options.algorithms, "dyngen report");
     make_report(robot, options, output);
   });
 }
@@ -459,7 +606,7 @@ int firmware_report_main(int argc, char** argv) {
     if (!options.quiet) fmt::print("dyngen {} firmware-report: reading {}\n", version, input);
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
-    options.generate = code.options(robot, flags);
+    options.generate = code.options(robot, flags, "dyngen firmware-report");
     const std::vector<std::string> failed = make_firmware_report(robot, options, output);
     for (const std::string& f : failed)
       fmt::print(stderr, "dyngen firmware-report: check failed: {}\n", safe_text(f, true));
@@ -511,7 +658,7 @@ int main(int argc, char** argv) {
     if (!quiet) fmt::print("dyngen {}: reading {}\n", version, input);
     const Robot robot = load_robot(input, flags.load_options());
     for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
-    GenerateOptions options = code.options(robot, flags);
+    GenerateOptions options = code.options(robot, flags, "dyngen");
     if (app.count("--measure") + app.count("--no-measure") > 0) options.measure = measure;
 
     if (!quiet) {
@@ -520,6 +667,15 @@ int main(int argc, char** argv) {
                  robot.model.nbodies);
       if (!robot.locked.empty()) fmt::print(", {} joints locked", robot.locked.size());
       fmt::print("\n");
+      if (std::any_of(options.algorithms.begin(), options.algorithms.end(), uses_frames)) {
+        std::vector<std::string> names;
+        for (const Frame<double>& f : robot.model.frames) names.push_back(safe_text(f.name));
+        fmt::print("frames: {}{}\n", fmt::join(names, ", "),
+                   flags.frames.empty()
+                       ? fmt::format(" (the default: {}; --frames names others)",
+                                     default_frames_rule)
+                       : "");
+      }
       // each step as it starts: a big robot takes seconds per step
       options.progress = [](const std::string& step) {
         fmt::print("{} ...\n", step);

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <string_view>
@@ -55,17 +56,56 @@ bool written_by_dyngen(const fs::path& file) {
          (file.filename() == "dyngen_kernels.hpp" && text.starts_with("// dyngen kernels:"));
 }
 
-std::string staging_prefix(const fs::path& target) {
-  return fmt::format(".{}.dyngen-tmp-", target.filename().string());
+/// What a directory holds: files of dyngen's (is_dyngen_package), CMake build trees, and the
+/// rest, sorted (folders with a trailing /).
+struct DirectoryContents {
+  std::vector<std::string> foreign, build_trees;
+  int dyngen_files = 0;
+};
+
+DirectoryContents contents_of(const fs::path& dir) {
+  DirectoryContents contents;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+    const fs::file_status status = e.symlink_status();
+    const std::string name = e.path().filename().string();
+    if (fs::is_directory(status)) {
+      (fs::exists(e.path() / "CMakeCache.txt") ? contents.build_trees : contents.foreign)
+          .push_back(name + "/");
+    } else if (fs::is_regular_file(status) && written_by_dyngen(e.path())) {
+      ++contents.dyngen_files;
+    } else {
+      contents.foreign.push_back(name);
+    }
+  }
+  std::sort(contents.foreign.begin(), contents.foreign.end());
+  std::sort(contents.build_trees.begin(), contents.build_trees.end());
+  return contents;
 }
 
-/// Removes the staging directories beside target that processes which no longer run left
-/// behind (a write killed midway).
-void remove_stale_staging(const fs::path& target) {
-  const std::string prefix = staging_prefix(target);
+/// 64-bit FNV-1a: a short digest of a long name that every build computes alike.
+std::uint64_t digest(std::string_view text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char ch : text) h = (h ^ static_cast<unsigned char>(ch)) * 1099511628211ull;
+  return h;
+}
+
+/// The prefix of target's staging directories beside it, `.NAME.dyngen-KIND-`. A NAME too long
+/// to fit, with the prefix and a process id, in a file name's 255 bytes is cut, and a digest of
+/// the whole of it added, so that the prefix stays NAME's own.
+std::string staging_prefix(const fs::path& target, std::string_view kind = "tmp") {
+  constexpr std::size_t longest = 200;  // 255 less ".", ".dyngen-tmp-" and a process id
+  std::string name = target.filename().string();
+  if (name.size() > longest)
+    name = fmt::format("{}~{:016x}", name.substr(0, longest - 17), digest(name));
+  return fmt::format(".{}.dyngen-{}-", name, kind);
+}
+
+/// Removes the staging directories in parent named prefix + the id of a process that no longer
+/// runs (a write killed midway).
+void remove_stale_staging(const fs::path& parent, const std::string& prefix) {
   std::vector<fs::path> stale;
   std::error_code error;
-  for (auto it = fs::directory_iterator(target.parent_path(), error);
+  for (auto it = fs::directory_iterator(parent, error);
        !error && it != fs::directory_iterator(); it.increment(error)) {
     const std::string name = it->path().filename().string();
     if (!name.starts_with(prefix)) continue;
@@ -79,16 +119,17 @@ void remove_stale_staging(const fs::path& target) {
   for (const fs::path& path : stale) fs::remove_all(path, error);
 }
 
-/// The files, in a new directory beside target; nothing is left if writing fails.
-fs::path stage(const fs::path& target, const std::string& dir,
+/// The files, in a new directory in parent named prefix + this process' id; nothing is left if
+/// writing fails.
+fs::path stage(const fs::path& parent, const std::string& prefix, const std::string& dir,
                const std::vector<GeneratedFile>& files) {
-  const fs::path staging =
-      target.parent_path() / fmt::format("{}{}", staging_prefix(target), ::getpid());
+  remove_stale_staging(parent, prefix);
+  const fs::path staging = parent / fmt::format("{}{}", prefix, ::getpid());
   std::error_code error;
   fs::remove_all(staging, error);
   if (::mkdir(staging.c_str(), 0777) != 0)
-    fail(dir, fmt::format("cannot create the staging directory {} beside it",
-                          staging.filename().string()),
+    fail(dir, fmt::format("cannot create the staging directory {} {}", staging.filename().string(),
+                          parent == fs::path(dir) ? "in it" : "beside it"),
          errno);
   try {
     // named as the user will know them, not by the staging directory
@@ -106,8 +147,7 @@ fs::path stage(const fs::path& target, const std::string& dir,
 /// files and target's CMake build trees, in one rename.
 void replace_whole(const fs::path& target, const std::string& dir,
                    const std::vector<GeneratedFile>& files) {
-  remove_stale_staging(target);
-  const fs::path staging = stage(target, dir, files);
+  const fs::path staging = stage(target.parent_path(), staging_prefix(target), dir, files);
   std::vector<fs::path> build_trees;
   for (const fs::directory_entry& e : fs::directory_iterator(target))
     if (e.is_directory()) build_trees.push_back(e.path().filename());
@@ -123,8 +163,8 @@ void replace_whole(const fs::path& target, const std::string& dir,
     if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) != 0) {
       // a file system without atomic exchange: the old package aside, then the new in place
       if (errno != EINVAL && errno != ENOSYS) fail(dir, "cannot replace it", errno);
-      const fs::path old = target.parent_path() /
-                           fmt::format(".{}.dyngen-old-{}", target.filename().string(), ::getpid());
+      const fs::path old =
+          target.parent_path() / fmt::format("{}{}", staging_prefix(target, "old"), ::getpid());
       if (::rename(target.c_str(), old.c_str()) != 0) fail(dir, "cannot replace it", errno);
       if (::rename(staging.c_str(), target.c_str()) != 0) {
         const int error = errno;
@@ -141,19 +181,54 @@ void replace_whole(const fs::path& target, const std::string& dir,
   fs::remove_all(old_package, ignored);
 }
 
-/// --force: each file into dir by a rename of its own; the rest of dir stays.
-void write_into(const fs::path& target, const std::vector<GeneratedFile>& files) {
-  for (const GeneratedFile& file : files) {
-    const fs::path path = target / file.name;
-    const fs::path tmp = target / fmt::format(".{}.dyngen-tmp-{}", file.name, ::getpid());
-    int error = write_bytes(tmp, file.text);
-    if (error == 0 && ::rename(tmp.c_str(), path.c_str()) != 0) error = errno;
-    if (error != 0) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      fail(path, "cannot write", error);
+/// A new directory: created with its missing parents from a staging directory beside it, in one
+/// rename; a failure removes the parents it created.
+void create_whole(const fs::path& target, const std::string& dir,
+                  const std::vector<GeneratedFile>& files) {
+  std::vector<fs::path> missing;  // innermost first
+  std::error_code error;
+  for (fs::path p = target.parent_path(); !fs::exists(p, error) && p.has_relative_path();
+       p = p.parent_path())
+    missing.push_back(p);
+  try {
+    fs::create_directories(target.parent_path());
+    const fs::path staging = stage(target.parent_path(), staging_prefix(target), dir, files);
+    if (::rename(staging.c_str(), target.c_str()) != 0) {
+      const int e = errno;
+      fs::remove_all(staging, error);
+      fail(dir, "cannot create it", e);
     }
+  } catch (...) {
+    for (const fs::path& p : missing) fs::remove(p, error);
+    throw;
   }
+}
+
+/// --force: every file staged in a folder inside dir (on dir's file system, even where dir is a
+/// mount point), then each moved into place by a rename, so that a failure to write (a full
+/// disk) leaves dir as it was. A rename that fails (rarely: permissions) leaves the files moved
+/// before it, which the message names.
+void write_into(const fs::path& target, const std::string& dir,
+                const std::vector<GeneratedFile>& files) {
+  std::error_code error;
+  for (const GeneratedFile& file : files)
+    if (fs::is_directory(fs::symlink_status(target / file.name, error)))
+      throw FileError(fmt::format("{}: is a directory, which --force does not replace",
+                                  (fs::path(dir) / file.name).string()));
+  const fs::path staging = stage(target, ".dyngen-tmp-", dir, files);
+  std::string moved;
+  for (const GeneratedFile& file : files) {
+    if (::rename((staging / file.name).c_str(), (target / file.name).c_str()) != 0) {
+      const int e = errno;
+      fs::remove_all(staging, error);
+      fail(fs::path(dir) / file.name,
+           moved.empty() ? std::string("cannot write")
+                         : fmt::format("cannot write (written before it: {})", moved),
+           e);
+    }
+    moved += (moved.empty() ? "" : ", ") + file.name;
+  }
+  fs::remove(staging, error);
 }
 
 }  // namespace
@@ -163,18 +238,8 @@ void write_file(const fs::path& path, const std::string& text) {
 }
 
 bool is_dyngen_package(const fs::path& dir) {
-  bool any = false;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
-    const fs::file_status status = e.symlink_status();
-    if (fs::is_directory(status)) {
-      if (!fs::exists(e.path() / "CMakeCache.txt")) return false;
-    } else if (fs::is_regular_file(status) && written_by_dyngen(e.path())) {
-      any = true;
-    } else {
-      return false;
-    }
-  }
-  return any;
+  const DirectoryContents contents = contents_of(dir);
+  return contents.foreign.empty() && contents.dyngen_files > 0;
 }
 
 namespace {
@@ -189,22 +254,62 @@ fs::path resolved(const std::string& dir) {
   return target.has_filename() ? target : target.parent_path();
 }
 
+/// FileError when a name in target is longer than its file system takes, before any work.
+void check_name_lengths(const fs::path& target, const std::string& dir) {
+  std::error_code error;
+  fs::path existing = target;
+  while (!fs::exists(existing, error) && existing.has_relative_path())
+    existing = existing.parent_path();
+  const long longest = ::pathconf(existing.c_str(), _PC_NAME_MAX);
+  for (const fs::path& part : target)
+    if (longest > 0 && part.string().size() > static_cast<std::size_t>(longest))
+      throw FileError(fmt::format("{}: a name in it has {} bytes, more than the {} its file "
+                                  "system takes: {}",
+                                  dir, part.string().size(), longest, part.string()));
+}
+
+/// "a, b, c and 4 more"
+std::string listed(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t k = 0; k < names.size() && k < 3; ++k)
+    text += (k == 0 ? "" : ", ") + names[k];
+  return names.size() > 3 ? fmt::format("{} and {} more", text, names.size() - 3) : text;
+}
+
 Write how_to_write(const fs::path& target, const std::string& dir, bool force) {
   std::error_code error;
   const fs::file_status status = fs::status(target, error);
-  if (status.type() == fs::file_type::not_found) return Write::Create;
+  if (status.type() == fs::file_type::not_found) {
+    check_name_lengths(target, dir);
+    return Write::Create;
+  }
   if (error) fail(dir, "cannot open it", error.value());
   if (!fs::is_directory(status))
     throw FileError(fmt::format("{}: exists and is not a directory", dir));
-  if (target.has_filename() && (fs::is_empty(target) || is_dyngen_package(target)))
+  // replacing the current directory would leave the shell in a deleted one
+  const fs::path cwd = fs::current_path(error);
+  const bool current = !error && fs::equivalent(target, cwd, error);
+  if (current && !force)
+    throw FileError(fmt::format(
+        "{}: is the current directory, which dyngen would replace whole. Give a new directory "
+        "(-o gen), or --force to write the package's files into this one (files of the same names "
+        "are replaced, the rest are kept).",
+        dir));
+  if (current) return Write::Into;
+  const DirectoryContents contents = contents_of(target);
+  // the root has no name, and no directory beside it to assemble a new one in
+  if (target.has_filename() && contents.foreign.empty() &&
+      (contents.dyngen_files > 0 || contents.build_trees.empty()))
     return Write::ReplaceWhole;
   if (!force)
     throw FileError(fmt::format(
-        "{}: exists and holds files that dyngen did not write; dyngen writes a package only into "
-        "a new or empty directory or over a package it wrote. Choose another directory, or give "
-        "--force to write the package's files into it (files of the same names are replaced, the "
-        "rest are kept).",
-        dir));
+        "{}: exists and holds files that dyngen did not write ({}); dyngen writes a package only "
+        "into a new or empty directory or over a package it wrote. Choose another directory, or "
+        "give --force to write the package's files into it (files of the same names are "
+        "replaced, the rest are kept).",
+        dir,
+        contents.foreign.empty() ? listed(contents.build_trees) + ", without a package"
+                                 : listed(contents.foreign)));
   return Write::Into;
 }
 
@@ -217,20 +322,9 @@ void check_output_dir(const std::string& dir, bool force) {
 void write_package(const std::string& dir, const std::vector<GeneratedFile>& files, bool force) {
   const fs::path target = resolved(dir);
   switch (how_to_write(target, dir, force)) {
-    case Write::Create: {
-      fs::create_directories(target.parent_path());
-      remove_stale_staging(target);
-      const fs::path staging = stage(target, dir, files);
-      if (::rename(staging.c_str(), target.c_str()) != 0) {
-        const int error = errno;
-        std::error_code ignored;
-        fs::remove_all(staging, ignored);
-        fail(dir, "cannot create it", error);
-      }
-      return;
-    }
+    case Write::Create: return create_whole(target, dir, files);
     case Write::ReplaceWhole: return replace_whole(target, dir, files);
-    case Write::Into: return write_into(target, files);
+    case Write::Into: return write_into(target, dir, files);
   }
 }
 

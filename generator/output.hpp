@@ -19,18 +19,21 @@ struct GeneratedFile {
 void write_file(const std::filesystem::path& path, const std::string& text);
 
 /// Whether dir holds a package that dyngen wrote and may replace: every file in it starts with
-/// dyngen's banner (or is the dyngen_sincos.h (dyngen_sincos.hpp before 0.2) or dyngen_kernels.hpp it copies), at least one
-/// does, and every folder in it is a CMake build tree (has a CMakeCache.txt), such as the
-/// build/ of the README.
+/// dyngen's banner (or is the dyngen_sincos.h (dyngen_sincos.hpp before 0.2) or
+/// dyngen_kernels.hpp it copies), at least one does, and every folder in it is a CMake build tree
+/// (has a CMakeCache.txt), such as the build/ of the README.
 bool is_dyngen_package(const std::filesystem::path& dir);
 
-/// Writes files as the package in dir. A new directory (with missing parents) appears whole; an
-/// empty one, or one that is_dyngen_package(), is replaced whole and atomically by a directory
-/// assembled beside it, into which the CMake build trees of the old package move, so that
-/// they are kept. Any other existing directory is refused (FileError) unless `force`, which
-/// writes the files into it one by one, each replaced by a rename, and leaves the rest alone.
-/// Staging directories are named `.NAME.dyngen-tmp-PID` beside dir; those of processes that
-/// died (killed while writing) are removed on the next write.
+/// Writes files as the package in dir. A new directory (with missing parents, removed again if
+/// writing fails) appears whole; an empty one, or one that is_dyngen_package(), is replaced
+/// whole and atomically by a directory assembled beside it, into which the CMake build trees of
+/// the old package move, so that they are kept. Any other existing directory, and the current
+/// directory (which the shell would lose), is refused (FileError, naming what is in the way)
+/// unless `force`, which stages every file in a folder inside dir, then moves each into place
+/// by a rename, and leaves the rest alone. Staging directories are named `.NAME.dyngen-tmp-PID`
+/// beside dir (a NAME too long for that cut, and completed by a digest of it) or
+/// `.dyngen-tmp-PID` inside it; those of processes that died (killed while writing) are removed
+/// on the next write.
 void write_package(const std::string& dir, const std::vector<GeneratedFile>& files,
                    bool force = false);
 

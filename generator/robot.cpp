@@ -17,6 +17,7 @@
 
 #include "dyngen/aba.hpp"
 #include "dyngen/numerics/conditioning.hpp"
+#include "process.hpp"
 
 namespace dyngen::gen {
 
@@ -229,16 +230,19 @@ std::string read_file(const std::string& path) {
 
 namespace {
 
-/// Keeps the frames of the links named (in that order), or without names those of the leaf
-/// links, the links no joint hangs from: tool flanges, feet, sensors.
+/// Keeps the frames of the links named (in that order), or without names those of
+/// default_frames_rule, in the model's order: the leaf links on a body without moving children.
 void select_frames(Model<double>& model, const ModelBuilder& builder,
                    const std::vector<std::string>& names, const std::string& path) {
   std::vector<Frame<double>> kept;
   if (names.empty()) {
     std::set<std::string> parents;
     for (const JointSpec& joint : builder.joints()) parents.insert(joint.parent);
+    std::vector<bool> end_of_limb(model.nbodies, true);
+    for (int i = 0; i < model.nbodies; ++i)
+      if (model.parent[i] >= 0) end_of_limb[model.parent[i]] = false;
     for (const Frame<double>& f : model.frames)
-      if (!parents.count(f.name)) kept.push_back(f);
+      if (f.body >= 0 && end_of_limb[f.body] && !parents.count(f.name)) kept.push_back(f);
   }
   for (const std::string& name : names) {
     const auto it = std::find_if(model.frames.begin(), model.frames.end(),
@@ -270,6 +274,14 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
     description = parse_urdf(path, text);
   } else if (has_extension(path, {".yaml", ".yml"})) {
     description = parse_chain(path, text);
+  } else if (has_extension(path, {".xacro"})) {
+    // ur5.urdf.xacro: a URDF written with macros, which ROS's xacro expands
+    std::string urdf = std::filesystem::path(path).stem().string();
+    if (!has_extension(urdf, {".urdf"})) urdf += ".urdf";
+    throw InputError(fmt::format(
+        "{}: a xacro file (a URDF with macros): expand it to a URDF first, with ROS's xacro "
+        "(xacro {} > {}), and give dyngen the .urdf",
+        path, shell_word(path), shell_word(urdf)));
   } else {
     throw InputError(fmt::format(
         "{}: unknown kind of robot file (expected .urdf or .xml for URDF, .yaml or .yml for a "

@@ -47,7 +47,7 @@ struct LoadOptions {
   bool mimic_independent = false;       // accept URDF mimic joints as independent joints
   std::optional<double> snap;           // snap constants within this tolerance (snap())
   std::vector<std::string> frames;      // the links whose frames to keep, in this order
-                                        // (--frames); none named: the leaf links
+                                        // (--frames); none named: default_frames_rule
   bool all_frames = false;              // keep every link's frame
 };
 
@@ -62,6 +62,12 @@ struct Robot {
 };
 
 inline constexpr Vec3<double> default_gravity{0, 0, -9.81};
+
+/// The frames kept when --frames names none, in words (--help and the console say it): the
+/// sensors and rotors on the trunk and along the limbs are left out.
+inline constexpr const char* default_frames_rule =
+    "the ends of the limbs, the leaf links on the bodies that no moving joint hangs from (tool "
+    "flanges, feet, fingertips)";
 
 /// The largest robot dyngen takes (README, "Limits"): joints in the file (and links, one more),
 /// and degrees of freedom (entries of v). Generating RNEA or ABA for a chain of 10,000 links takes

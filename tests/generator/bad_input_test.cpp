@@ -93,6 +93,8 @@ const std::vector<Case> bad_robots = {
     {"LockUnknownJoint", models + "/ur5.urdf", {"--lock", "no_such_joint"},
      {"joint 'no_such_joint'", "no joint of that name"}},
     {"UnknownExtension", bad + "/robot.sdf", {}, {"unknown kind of robot file", ".urdf", ".yaml"}},
+    {"XacroFile", bad + "/robot.urdf.xacro", {},
+     {"a xacro file", "xacro " + bad + "/robot.urdf.xacro > robot.urdf", "give dyngen the .urdf"}},
     {"MalformedYaml", bad + "/malformed.yaml", {}, {"malformed.yaml:7:", "malformed YAML"}},
     {"ChainUnknownKey", bad + "/unknown_key.yaml", {},
      {"unknown_key.yaml:8:", "links[1]", "unknown key 'lenght'", "allowed:"}},
@@ -168,6 +170,23 @@ const std::vector<Case> bad_options = {
      {"--python: batch functions are C++"}},
     {"FrameUnknown", models + "/ur5.urdf", {"--frames", "tool0,tool9"},
      {"--frames: no link named 'tool9'", "'tool0'", "'wrist_3_link'"}},
+    {"FramesEmpty", models + "/ur5.urdf", {"--frames", ","},
+     {"--frames: ',' has an empty name", "such as tool0,ee_link"}},
+    {"FramesEmptyItem", models + "/ur5.urdf",
+     {"--frames", "tool0,,ee_link", "--algorithms", "frame_placements"},
+     {"--frames: 'tool0,,ee_link' has an empty name"}},
+    // CLI11 would take the next option as the value
+    {"FramesEqualsNothing", models + "/ur5.urdf",
+     {"--frames=", "--algorithms", "frame_placements"}, {"--frames: no value after the ="}},
+    {"FramesBeforeAnOption", models + "/ur5.urdf",
+     {"--frames", "--algorithms", "frame_placements"},
+     {"--frames: no value before --algorithms, which is an option"}},
+    {"LanesInC", models + "/ur5.urdf", {"--structure", "lanes", "--lang", "c"},
+     {"--structure lanes: vector lanes are C++", "with --lang c choose auto, shared or unrolled"}},
+    {"NearMissOption", models + "/ur5.urdf", {"--floating"},
+     {"unknown option --floating (did you mean --floating-base?)"}},
+    {"NearMissOptions", models + "/ur5.urdf", {"--lock-masless", "--bogus=1"},
+     {"unknown options --lock-masless (did you mean --lock-massless?), --bogus\n"}},
     {"JacobianFrameUnknown", models + "/ur5.urdf", {"--jacobian-frame", "body"},
      {"--jacobian-frame", "body"}},
     {"UnknownOption", models + "/ur5.urdf", {"--bogus"}, {"--bogus", "--help"}},
@@ -203,6 +222,19 @@ TEST_F(Scratch, CommandLineMistakesExitWith1AndSaySo) {
        "dyngen report: error: --states: '1.5' is not an integer"},
       {{"report", ur5, "-o", out, "--min-time", "nan"},
        "dyngen report: error: --min-time: 'nan' is not a finite number"},
+      // a list is one value: the robot after it is not a link
+      {{"--frames", "tool0", "ee_link", ur5, "-o", out},
+       "dyngen: error: The following argument was not expected: " + ur5 +
+           " (dyngen reads one robot file, here 'ee_link'; a list is one value, comma-separated"},
+      // a near miss gets the option it misses, in every command
+      {{"eval", ur5, "--states", "-", "--floting-base"},
+       "dyngen eval: error: unknown option --floting-base (did you mean --floating-base?)"},
+      {{"report", ur5, "-o", out, "--repetition", "3"},
+       "dyngen report: error: unknown option --repetition (did you mean --repetitions?)"},
+      {{"firmware-report", ur5, "-o", out, "--targt", "cortex-m7"},
+       "dyngen firmware-report: error: unknown option --targt (did you mean --target?)"},
+      // before the error it causes: without the option, -o is missing
+      {{ur5, "--outptu", out}, "dyngen: error: unknown option --outptu (did you mean --output?)"},
   };
   for (const auto& [args, message] : mistakes) {
     const CliResult r = run_dyngen(args, dir);
@@ -215,6 +247,109 @@ TEST_F(Scratch, CommandLineMistakesExitWith1AndSaySo) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// ---- options that work as a new user would expect
+
+/// The banner's options line of a package.
+std::string options_line(const fs::path& header) {
+  const std::string text = read(header);
+  const std::size_t at = text.find("// Options: ");
+  return at == std::string::npos ? "" : text.substr(at, text.find('\n', at) - at);
+}
+
+TEST_F(Scratch, FramesAreTrimmedAndRecordedInTheBanner) {
+  const CliResult r = run_dyngen({models + "/ur5.urdf", "-o", (dir / "out").string(), "--frames",
+                                  " tool0 ,\tee_link", "--algorithms", "frame_placements"},
+                                 dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\nframes: tool0, ee_link\n"), std::string::npos) << r.out;
+  EXPECT_NE(read(dir / "out" / "ur5_dynamics.hpp")
+                .find("frame_names[nframes] = {\n    \"tool0\",\n    \"ee_link\",\n};"),
+            std::string::npos);
+  EXPECT_TRUE(options_line(dir / "out" / "ur5_dynamics.hpp").ends_with(" --frames tool0,ee_link"));
+}
+
+TEST_F(Scratch, DefaultFramesAreSaidOnTheConsoleAndInTheBanner) {
+  const CliResult r = run_dyngen(
+      {models + "/ur5.urdf", "-o", (dir / "out").string(), "--algorithms", "frame_jacobians"}, dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\nframes: ee_link, tool0 (the default: the ends of the limbs, the leaf "
+                       "links on the bodies that no moving joint hangs from"),
+            std::string::npos)
+      << r.out;
+  EXPECT_TRUE(options_line(dir / "out" / "ur5_dynamics.hpp").ends_with(" --frames ee_link,tool0"));
+}
+
+TEST_F(Scratch, FramesWithoutAFrameAlgorithmAreAWarningAndNotInTheBanner) {
+  const CliResult r =
+      run_dyngen({models + "/ur5.urdf", "-q", "-o", (dir / "out").string(), "--frames", "tool0",
+                  "--algorithms", "rnea"},
+                 dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("dyngen: warning: --frames is ignored: none of the algorithms computes "
+                       "frames (add one of frame_placements, frame_jacobians, "),
+            std::string::npos)
+      << r.err;
+  const std::string options = options_line(dir / "out" / "ur5_dynamics.hpp");
+  EXPECT_EQ(options.find("--frames"), std::string::npos) << options;
+}
+
+TEST_F(Scratch, SubnormalGravityIsAFiniteNumber) {
+  // std::stod throws out_of_range on 1e-320, which was taken for "not finite"
+  const CliResult r = run_dyngen({models + "/double_pendulum.urdf", "-q", "-o",
+                                  (dir / "out").string(), "--gravity", "1e-320,0,-4.9e-324",
+                                  "--algorithms", "rnea", "--name", "pendulum"},
+                                 dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string options = options_line(dir / "out" / "pendulum_dynamics.hpp");
+  EXPECT_NE(options.find(" --gravity 1e-320,0,-5e-324 "), std::string::npos) << options;
+}
+
+/// The numbers in text, thousands separators dropped: "40,000 and 2" is {2, 40000}.
+std::set<long> numbers_in(const std::string& text) {
+  std::set<long> numbers;
+  static const std::regex number(R"(\b[0-9][0-9,]*\b)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), number);
+       it != std::sregex_iterator(); ++it) {
+    std::string digits = it->str();
+    std::erase(digits, ',');
+    numbers.insert(std::stol(digits));
+  }
+  return numbers;
+}
+
+TEST_F(Scratch, HelpAndReadmeGiveTheSameStructureRules) {
+  // --structure's thresholds in --help and in README's option table: the same numbers
+  const CliResult help = run_dyngen({"--help"}, dir);
+  ASSERT_EQ(help.status, 0);
+  const std::size_t option = help.out.find("--structure");
+  ASSERT_NE(option, std::string::npos) << help.out;
+  const std::string in_help = help.out.substr(option, help.out.find("\n  -", option) - option);
+  const std::string readme = read(std::string(DYNGEN_SOURCE_DIR) + "/README.md");
+  const std::size_t row = readme.find("| `--structure auto");
+  ASSERT_NE(row, std::string::npos);
+  const std::string in_readme = readme.substr(row, readme.find('\n', row) - row);
+  EXPECT_EQ(numbers_in(in_help), numbers_in(in_readme)) << in_help << "\n" << in_readme;
+  EXPECT_EQ(numbers_in(in_help),
+            (std::set<long>{2, 4, static_cast<long>(dyngen::gen::min_shared_operations),
+                            dyngen::gen::min_shared_function_operations,
+                            dyngen::gen::max_lane_function_operations}));
+}
+
+TEST(Readme, UR5sDefaultFramesAreTheRealOnesInTheirOrder) {
+  const std::string readme = read(std::string(DYNGEN_SOURCE_DIR) + "/README.md");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(readme, m, std::regex(R"(by default [^(]*\(ur5: ([^)]*)\))")));
+  std::vector<std::string> said;
+  static const std::regex name("`([^`]+)`");
+  const std::string list = m[1];
+  for (auto it = std::sregex_iterator(list.begin(), list.end(), name);
+       it != std::sregex_iterator(); ++it)
+    said.push_back((*it)[1]);
+  std::vector<std::string> real;
+  const std::string ur5 = std::string(DYNGEN_SOURCE_DIR) + "/examples/ur5.urdf";
+  for (const auto& f : load_robot(ur5).model.frames) real.push_back(f.name);
+  EXPECT_EQ(said, real);
+}
 
 class BadRobot : public Scratch, public ::testing::WithParamInterface<Case> {};
 class BadInput : public Scratch, public ::testing::WithParamInterface<Case> {};

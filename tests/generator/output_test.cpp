@@ -2,11 +2,13 @@
 // appears whole, an empty one or a package dyngen wrote is replaced whole (its CMake build trees
 // kept), any other directory is refused unless --force, and a failure leaves the directory as it
 // was with no temporary beside it.
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -177,6 +179,10 @@ TEST_F(WritePackage, RefusesADirectoryWithFilesDyngenDidNotWrite) {
     EXPECT_NE(message.find(target.string() + ": exists and holds files that dyngen did not write"),
               std::string::npos)
         << message;
+    // what is in the way, named
+    EXPECT_NE(message.find(target == project ? "(CMakeLists.txt, src/)" : "(notes.txt)"),
+              std::string::npos)
+        << message;
     EXPECT_NE(message.find("--force"), std::string::npos) << message;
     EXPECT_EQ(snapshot(target), before);
   }
@@ -248,6 +254,143 @@ TEST_F(WritePackage, RemovesStagingDirectoriesOfProcessesThatDied) {
 // a file that cannot be created (its folder does not exist) makes the write fail midway
 const std::vector<GeneratedFile> failing = {{"robot_dynamics.hpp", "// header\n"},
                                             {"missing_folder/robot_dynamics.cpp", "// source\n"}};
+
+TEST_F(WritePackage, NamesAtMostThreeFilesInTheWay) {
+  const fs::path project = dir / "project";
+  for (const char* name : {"e.txt", "d.txt", "c.txt", "b.txt", "a.txt"}) write(project / name, "");
+  const std::string message = refusal(project);
+  EXPECT_NE(message.find("did not write (a.txt, b.txt, c.txt and 2 more);"), std::string::npos)
+      << message;
+}
+
+TEST_F(WritePackage, ANameUpToTheFileSystemsLimitGetsAStagingNameThatFits) {
+  // the staging directory .NAME.dyngen-tmp-PID of a 240-byte NAME would pass the 255 bytes of
+  // a file name; 255 is the longest name there is
+  for (const std::size_t length : {240, 255}) {
+    const fs::path gen = dir / std::string(length, 'g');
+    write_package(gen.string(), files);
+    EXPECT_EQ(snapshot(gen), written);
+    write_package(gen.string(), files);  // replaced whole, through the staging name too
+    EXPECT_EQ(snapshot(gen), written);
+    EXPECT_EQ(entries_of(dir), std::vector<std::string>{gen.filename().string()});
+    fs::remove_all(gen);
+  }
+}
+
+TEST_F(WritePackage, ANameTooLongIsRefusedAndLeavesNoParentDirectories) {
+  const fs::path gen = dir / "a" / "b" / std::string(256, 'g');
+  const std::string message = refusal(gen);
+  EXPECT_NE(message.find("a name in it has 256 bytes, more than the 255"), std::string::npos)
+      << message;
+  EXPECT_TRUE(entries_of(dir).empty()) << entries_of(dir).front();
+}
+
+TEST_F(WritePackage, AFailedWriteRemovesTheParentDirectoriesItCreated) {
+  write(dir / "a" / "kept", "");
+  EXPECT_THROW(write_package((dir / "a" / "b" / "c" / "gen").string(), failing), FileError);
+  EXPECT_EQ(entries_of(dir), std::vector<std::string>{"a"});
+  EXPECT_EQ(entries_of(dir / "a"), std::vector<std::string>{"kept"});
+}
+
+/// Runs `work` with dir as the current directory.
+template <class Work>
+void in_directory(const fs::path& dir, Work work) {
+  const fs::path before = fs::current_path();
+  fs::current_path(dir);
+  try {
+    work();
+  } catch (...) {
+    fs::current_path(before);
+    throw;
+  }
+  fs::current_path(before);
+}
+
+TEST_F(WritePackage, RefusesTheCurrentDirectoryUnlessForced) {
+  // replacing it whole, even empty or a package of dyngen's, would leave the shell in a deleted
+  // directory: -o . is refused, and with --force the files are written into it
+  const fs::path gen = dir / "gen";
+  write_package(gen.string(), files);
+  const auto before = snapshot(gen);
+  struct stat was {};
+  ASSERT_EQ(::stat(gen.c_str(), &was), 0);
+  in_directory(gen, [&] {
+    for (const std::string& self : {std::string("."), gen.string(), std::string("../gen/")}) {
+      const std::string message = refusal(self);
+      EXPECT_NE(message.find(self + ": is the current directory"), std::string::npos) << message;
+      EXPECT_NE(message.find("--force"), std::string::npos) << message;
+    }
+    EXPECT_EQ(snapshot("."), before);
+    std::ofstream("notes.txt") << "the user's\n";
+    EXPECT_EQ(refusal(".", true), "");
+  });
+  struct stat is {};
+  ASSERT_EQ(::stat(gen.c_str(), &is), 0);
+  EXPECT_EQ(is.st_ino, was.st_ino) << "the directory was replaced";
+  auto expected = before;
+  expected["notes.txt"] = "the user's\n";
+  EXPECT_EQ(snapshot(gen), expected);
+  EXPECT_EQ(entries_of(dir), std::vector<std::string>{"gen"});
+}
+
+TEST_F(WritePackage, ReplacesAPackageThatHoldsTheCurrentDirectoryInABuildTree) {
+  // cd gen/build && dyngen ... -o ..: the build tree moves into the new package, and the
+  // current directory with it
+  const fs::path gen = dir / "gen";
+  write(gen / "robot_dynamics.hpp", banner + "// older\n");
+  write(gen / "build" / "CMakeCache.txt", "cache\n");
+  in_directory(gen / "build", [&] {
+    EXPECT_EQ(refusal(".."), "");
+    EXPECT_EQ(read("CMakeCache.txt"), "cache\n");
+  });
+  EXPECT_EQ(read(gen / "robot_dynamics.hpp"), banner + "// header\n");
+}
+
+TEST_F(WritePackage, WithForceAFullDiskLeavesTheDirectoryAsItWas) {
+  // a file size limit, in a child process, fails the write of the second file as a full disk
+  // would (EFBIG instead of ENOSPC): the first must not have replaced the user's file either
+  const fs::path gen = dir / "gen";
+  write(gen / "robot_dynamics.hpp", "// the user's header of the same name\n");
+  write(gen / "robot_dynamics.cpp", "// the user's source\n");
+  write(gen / "notes.txt", "the user's\n");
+  const auto before = snapshot(gen);
+  const std::vector<GeneratedFile> big = {{"robot_dynamics.hpp", banner + "// header\n"},
+                                          {"robot_dynamics.cpp", std::string(8192, 'x')}};
+  const fs::path message = dir / "message.txt";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{4096, 4096};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      write_package(gen.string(), big, true);
+    } catch (const FileError& e) {
+      std::ofstream(message) << e.what();
+      _exit(1);
+    }
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1) << "no FileError";
+  EXPECT_EQ(read(message),
+            (gen / "robot_dynamics.cpp").string() + ": cannot write: File too large");
+  fs::remove(message);
+  EXPECT_EQ(snapshot(gen), before);
+  EXPECT_EQ(entries_of(dir), std::vector<std::string>{"gen"});
+}
+
+TEST_F(WritePackage, WithForceRefusesToReplaceAFolderByAFile) {
+  const fs::path gen = dir / "gen";
+  write(gen / "notes.txt", "the user's\n");
+  write(gen / "CMakeLists.txt" / "kept", "");
+  const auto before = snapshot(gen);
+  EXPECT_EQ(refusal(gen, true),
+            (gen / "CMakeLists.txt").string() + ": is a directory, which --force does not replace");
+  EXPECT_EQ(snapshot(gen), before);
+}
 
 TEST_F(WritePackage, AFailedWriteLeavesNoNewDirectory) {
   EXPECT_THROW(write_package((dir / "gen").string(), failing), FileError);

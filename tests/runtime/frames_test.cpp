@@ -25,13 +25,21 @@ namespace {
 
 using namespace dyngen;
 
-// By default the model keeps the leaf links' frames (--frames names others, in its order)
-TEST(Frames, LeafLinksByDefaultOrThoseNamed) {
+/// The names of a model's frames, in its order.
+std::vector<std::string> frame_names(const Model<double>& model) {
+  std::vector<std::string> names;
+  for (const Frame<double>& f : model.frames) names.push_back(f.name);
+  return names;
+}
+
+// By default the model keeps the frames at the ends of the limbs (--frames names others, in its
+// order)
+TEST(Frames, EndsOfTheLimbsByDefaultOrThoseNamed) {
   const std::string path = test::model_path("ur5.urdf");
-  std::set<std::string> leaves;
-  for (const Frame<double>& f : gen::load_robot(path).model.frames) leaves.insert(f.name);
-  // ur5.urdf's links that no joint hangs from: the flange (ee_link), ROS's tool0 and base
-  EXPECT_EQ(leaves, (std::set<std::string>{"ee_link", "tool0", "base"}));
+  // ur5.urdf's links that no joint hangs from are the flange (ee_link), ROS's tool0, and base,
+  // which is on the fixed base, not at the end of the arm
+  EXPECT_EQ(frame_names(gen::load_robot(path).model),
+            (std::vector<std::string>{"ee_link", "tool0"}));
   std::vector<std::string> names;
   gen::LoadOptions options;
   options.frames = {"wrist_1_link", "base_link", "wrist_1_link"};
@@ -48,6 +56,53 @@ TEST(Frames, LeafLinksByDefaultOrThoseNamed) {
               std::string::npos)
         << e.what();
   }
+}
+
+// A quadruped as Unitree's describe theirs: an IMU and a radar on the trunk, and on each leg a
+// rotor for each joint, fixed to the body before the joint it drives.
+std::string quadruped_urdf() {
+  const std::string inertial = R"(<inertial><mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>)";
+  const auto link = [&](const std::string& name) {
+    return "<link name=\"" + name + "\">" + inertial + "</link>\n";
+  };
+  const auto joint = [](const std::string& name, const char* type, const std::string& parent,
+                        const std::string& child) {
+    return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent +
+           "\"/><child link=\"" + child + "\"/><origin xyz=\"0 0 -0.2\"/><axis xyz=\"0 1 0\"/>" +
+           "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n";
+  };
+  std::string urdf = "<robot name=\"quadruped\">\n" + link("base") + link("imu") + link("radar") +
+                     joint("imu_joint", "fixed", "base", "imu") +
+                     joint("radar_joint", "fixed", "base", "radar");
+  for (const std::string leg : {"FL", "FR"}) {
+    std::string parent = "base";
+    for (const std::string part : {"hip", "thigh", "calf"}) {
+      const std::string name = leg + "_" + part;
+      urdf += link(name) + link(name + "_rotor") +
+              joint(name + "_rotor_joint", "fixed", parent, name + "_rotor") +
+              joint(name + "_joint", "revolute", parent, name);
+      parent = name;
+    }
+    urdf += link(leg + "_foot") + joint(leg + "_foot_fixed", "fixed", parent, leg + "_foot");
+  }
+  return urdf + "</robot>\n";
+}
+
+TEST(Frames, ByDefaultNotTheSensorsAndRotorsOnTheTrunkAndAlongTheLegs) {
+  // of the 10 leaf links, the feet; locking the knee makes the thigh the end of the leg
+  gen::LoadOptions options;
+  options.floating_base = true;
+  const std::string urdf = quadruped_urdf();
+  EXPECT_EQ(frame_names(gen::parse_robot("quadruped.urdf", urdf, options).model),
+            (std::vector<std::string>{"FL_foot", "FR_foot"}));
+  options.lock = {"FL_calf_joint"};
+  EXPECT_EQ(frame_names(gen::parse_robot("quadruped.urdf", urdf, options).model),
+            (std::vector<std::string>{"FL_calf_rotor", "FL_foot", "FR_foot"}));
+  // a robot that is one free body: its leaf links
+  options.lock = {"FL_hip_joint", "FL_thigh_joint", "FL_calf_joint", "FR_hip_joint",
+                  "FR_thigh_joint", "FR_calf_joint"};
+  EXPECT_EQ(frame_names(gen::parse_robot("quadruped.urdf", urdf, options).model).size(), 10u);
 }
 
 TEST(Frames, EveryUrdfLinkIsAFrameOnTheBodyItMovesWith) {
