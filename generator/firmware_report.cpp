@@ -68,8 +68,9 @@ std::string harness_calls(const std::vector<Algorithm>& algorithms, const Dialec
     for (const ArraySpec& a : spec.outputs)
       prints += fmt::format("      print(\"{}\", s, {}, {});\n", spec.name, a.name,
                             extent_expression(a.extent));
-    const std::string call = dialect.c() ? dialect.external(algorithms[k])
-                                         : dialect.name + "::" + algorithms[k];
+    const std::string& name = algorithms[k];
+    const std::string call =
+        "::" + (dialect.c() ? dialect.external(name) : dialect.name + "::" + name);
     text += fmt::format(
         "    {{  // {0}\n"
         "      static Scalar {1};\n"
@@ -195,13 +196,13 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
                    {"header", ns + (c ? "_dynamics.h" : "_dynamics.hpp")},
                    {"scalar", single ? "float" : "double"},
                    {"states", std::to_string(options.states)},
-                   {"nq", c ? dialect.size("nq") : ns + "::nq"},
-                   {"nv", c ? dialect.size("nv") : ns + "::nv"},
+                   {"nq", c ? dialect.size("nq") : "::" + ns + "::nq"},
+                   {"nv", c ? dialect.size("nv") : "::" + ns + "::nv"},
                    {"frames_constant",
                     generated.nframes == 0
                         ? ""
                         : fmt::format("constexpr int nframes = {};",
-                                      c ? dialect.size("nframes") : ns + "::nframes")},
+                                      c ? dialect.size("nframes") : "::" + ns + "::nframes")},
                    {"quaternions", quaternions},
                    {"functions", std::to_string(generate_options.algorithms.size())},
                    {"calls", harness_calls(generate_options.algorithms, dialect)},

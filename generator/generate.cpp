@@ -225,7 +225,7 @@ std::string model_records(const Model<double>& model) {
     const Vec3<double>& k = model.joint_axis[i];
     const RigidInertia<double>& I = model.I[i];
     out += fmt::format(
-        "    {{{}, {}, {}, dyngen::JointType::{},\n"
+        "    {{{}, {}, {}, ::dyngen::JointType::{},\n"
         "     {},\n"
         "     {},\n"
         "     {},\n"
@@ -245,7 +245,7 @@ std::string model_records(const Model<double>& model) {
 std::string frame_records(const Model<double>& model) {
   if (model.frames.empty()) return "";
   std::string out =
-      "\ninline const dyngen::FrameRecord model_frames[] = {\n"
+      "\ninline const ::dyngen::FrameRecord model_frames[] = {\n"
       "    // frame, body (-1: the base), placement E (row-major) and r from the body's frame\n";
   auto list = [](std::initializer_list<double> xs) {
     std::string s;
@@ -501,7 +501,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     cases += fill("function_check.cpp.in",
                   {{"name", a},
                    {"namespace", ns},
-                   {"call", dialect.c() ? dialect.external(a) : ns + "::" + a},
+                   {"call", "::" + (dialect.c() ? dialect.external(a) : ns + "::" + a)},
                    {"arguments", arguments}});
     if (!batch_dialect.batch()) continue;
 
@@ -545,7 +545,8 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     batch_definitions += fill("many.cpp.in", many);
     if (options.python) python_functions += python_function(spec, ns);
     cases += fill("batch_check.cpp.in",
-                  {{"name", a}, {"namespace", ns}, {"call", ns + "::" + a}, {"arguments", arguments}});
+                  {{"name", a}, {"namespace", ns}, {"call", "::" + ns + "::" + a},
+                   {"arguments", arguments}});
   }
   if (!declarations.empty()) declarations.pop_back();
   if (!batch_declarations.empty()) batch_declarations.pop_back();
@@ -676,9 +677,10 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
                 batch_dialect.batch() ? fmt::format("#include \"{}_batch.hpp\"\n", ns) : ""},
                {"name", ns},
                {"namespace", ns},
-               {"nq", dialect.c() ? dialect.size("nq") : ns + "::nq"},
-               {"nv", dialect.c() ? dialect.size("nv") : ns + "::nv"},
-               {"joint_names", dialect.c() ? dialect.external("joint_names") : ns + "::joint_names"},
+               {"nq", dialect.c() ? dialect.size("nq") : "::" + ns + "::nq"},
+               {"nv", dialect.c() ? dialect.size("nv") : "::" + ns + "::nv"},
+               {"joint_names",
+                "::" + (dialect.c() ? dialect.external("joint_names") : ns + "::joint_names")},
                {"scalar", scalar},
                {"random_states", "10000"},
                {"extreme_states", "2000"},

@@ -368,7 +368,9 @@ struct CodeFlags {
         ->check(CLI::IsMember({"double", "float"}))
         ->capture_default_str();
     app.add_option("--name", name,
-                   "file prefix, and C++ namespace or C name prefix (default: the robot's name)");
+                   "file prefix, C++ namespace or C name prefix, and CMake target and option "
+                   "prefix (default: the robot's name made an identifier that no header the "
+                   "package includes defines: README, \"Names\")");
     app.add_option("--lang", lang,
                    "language of the code: c++ (C++17, in a namespace) or c (C99, every name "
                    "prefixed, a header usable from C and C++); the same functions and bits")
@@ -432,8 +434,8 @@ struct CodeFlags {
       throw InputError(fmt::format(
           "--name {}: not usable as a C++ namespace, C prefix and file prefix (it must be "
           "letters, digits and single underscores, start with a letter, have at most {} "
-          "characters, and not be a C or C++ keyword or a name the C library declares); for "
-          "example --name {}",
+          "characters, not start with dyngen or cmake, and not be a C or C++ keyword or a name "
+          "that the headers of generated code define: README, \"Names\"); for example --name {}",
           name, max_identifier, identifier(name)));
   }
 

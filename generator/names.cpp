@@ -4,8 +4,13 @@
 #include <cctype>
 #include <cstdint>
 #include <set>
+#include <unordered_set>
+#include <vector>
 
 #include <fmt/format.h>
+
+#include "template.hpp"
+#include "trace.hpp"
 
 namespace dyngen::gen {
 
@@ -31,11 +36,12 @@ std::size_t utf8_sequence(std::string_view text, std::size_t k, std::uint32_t& c
   return n;
 }
 
-/// C and C++ keywords and alternative tokens, macros that compilers predefine or the standard
-/// headers define, and what the C, C++ and POSIX headers that generated code and its check
-/// include declare at global scope: a namespace of one of these names does not compile, or
-/// means something else.
-const std::set<std::string, std::less<>>& reserved_words() {
+/// What no header need declare, so that no probe of the headers finds it: C and C++ keywords,
+/// alternative tokens and identifiers with a special meaning, what the harnesses of dyngen
+/// report and firmware-report declare at global scope beside the package's header (main and
+/// startup.c's sh_write; the rest starts with dyngen), and macros that builds define on the
+/// command line (NDEBUG: CMake's release builds).
+const std::set<std::string, std::less<>>& keywords() {
   static const std::set<std::string, std::less<>> words = {
       // C++20 keywords, alternative tokens, and identifiers with a special meaning
       "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break",
@@ -50,49 +56,51 @@ const std::set<std::string, std::less<>>& reserved_words() {
       "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid",
       "typename", "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t",
       "while", "xor", "xor_eq",
-      // C keywords and the macros of its headers that spell keywords
-      "restrict", "typeof", "typeof_unqual", "complex", "imaginary", "noreturn", "I",
-      // predefined and library macros
-      "linux", "unix", "i386", "NULL", "EOF", "BUFSIZ", "FILENAME_MAX", "FOPEN_MAX", "errno",
-      "assert", "stdin", "stdout", "stderr", "INFINITY", "NAN", "HUGE_VAL", "HUGE_VALF",
-      "offsetof", "setjmp", "longjmp", "va_arg", "va_start", "va_end", "va_copy", "va_list",
-      "EXIT_SUCCESS", "EXIT_FAILURE", "RAND_MAX", "CHAR_BIT", "INT_MAX", "INT_MIN", "SIZE_MAX",
-      "TRUE", "FALSE", "NDEBUG", "DEBUG", "MB_CUR_MAX", "CLOCKS_PER_SEC", "math_errhandling",
-      "fpclassify", "isfinite", "isinf", "isnan", "isnormal", "signbit", "major", "minor",
-      // namespaces and entry points that generated code and its check use
-      "std", "dyngen", "testing", "main", "posix", "gtest",
-      // C library functions and objects at global scope (math.h, stdio.h, stdlib.h, string.h,
-      // time.h, signal.h, ctype.h) and POSIX's (unistd.h, strings.h)
-      "abs", "acos", "asin", "atan", "atan2", "ceil", "cos", "cosh", "exp", "fabs", "floor",
-      "fmod", "frexp", "ldexp", "log", "log10", "modf", "pow", "sin", "sinh", "sqrt", "tan",
-      "tanh", "acosh", "asinh", "atanh", "cbrt", "copysign", "erf", "erfc", "exp2", "expm1",
-      "fdim", "fma", "fmax", "fmin", "hypot", "ilogb", "lgamma", "llrint", "llround", "log1p",
-      "log2", "logb", "lrint", "lround", "nan", "nearbyint", "nextafter", "nexttoward",
-      "remainder", "remquo", "rint", "round", "scalbln", "scalbn", "tgamma", "trunc", "gamma",
-      "j0", "j1", "jn", "y0", "y1", "yn", "sincos", "drem", "significand", "finite", "div",
-      "ldiv", "labs", "atof", "atoi", "atol", "strtod", "strtol", "strtoul", "rand", "srand",
-      "random", "srandom", "calloc", "malloc", "realloc", "free", "abort", "atexit", "exit",
-      "getenv", "setenv", "system", "bsearch", "qsort", "printf", "scanf", "sprintf", "sscanf",
-      "fprintf", "fscanf", "snprintf", "puts", "gets", "fputs", "fgets", "putc", "getc",
-      "putchar", "getchar", "fopen", "fclose", "fread", "fwrite", "fflush", "fseek", "ftell",
-      "rewind", "remove", "rename", "tmpfile", "tmpnam", "perror", "FILE", "fpos_t",
-      "memcpy", "memmove", "memset", "memcmp", "memchr", "strcpy", "strncpy", "strcat",
-      "strncat", "strcmp", "strncmp", "strlen", "strchr", "strrchr", "strstr", "strtok",
-      "strerror", "strdup", "index", "rindex", "bcopy", "bzero", "bcmp", "ffs", "time",
-      "clock", "difftime", "mktime", "ctime", "gmtime", "localtime", "asctime", "strftime",
-      "timezone", "daylight", "tzname", "tm", "signal", "raise", "kill", "isalpha", "isdigit",
-      "isalnum", "isspace", "isupper", "islower", "toupper", "tolower", "read", "write", "open",
-      "close", "pipe", "fork", "dup", "dup2", "link", "unlink", "symlink", "sleep", "usleep",
-      "access", "chdir", "rmdir", "mkdir", "sync", "pause", "alarm", "nice", "getpid",
-      "getppid", "environ", "optarg", "optind", "opterr", "optopt", "getopt", "select", "poll",
-      "wait", "truncate", "lseek", "chown", "chmod", "stat", "isatty", "ttyname", "exec",
-      "execv", "execl", "execvp", "brk", "sbrk", "swab", "crypt", "encrypt", "confstr",
-      "sysconf", "pathconf", "umask", "mount", "accept", "bind", "connect", "listen", "send",
-      "recv", "socket", "shutdown", "int8_t", "int16_t", "int32_t", "int64_t", "uint8_t",
-      "uint16_t", "uint32_t", "uint64_t", "size_t", "ptrdiff_t", "intptr_t", "uintptr_t",
-      "clock_t", "time_t", "wint_t", "max_align_t", "float_t", "double_t", "jmp_buf",
-      "sig_atomic_t", "div_t", "ldiv_t"};
+      // C keywords, and <complex.h>'s imaginary (where the compiler has imaginary types)
+      "restrict", "typeof", "typeof_unqual", "imaginary",
+      // the harnesses', command-line macros
+      "main", "sh_write", "NDEBUG", "DEBUG"};
   return words;
+}
+
+/// What the headers that generated files include define as macros or declare at global scope,
+/// as scripts/reserved_names.py found them (generator/reserved_names.txt, embedded).
+const std::unordered_set<std::string_view>& header_names() {
+  static const std::unordered_set<std::string_view> names = [] {
+    std::unordered_set<std::string_view> set;
+    const std::string_view text = template_text("reserved_names.txt");
+    for (std::size_t at = 0; at < text.size();) {
+      const std::size_t end = std::min(text.find('\n', at), text.size());
+      if (end > at && text[at] != '#') set.insert(text.substr(at, end - at));
+      at = end + 1;
+    }
+    return set;
+  }();
+  return names;
+}
+
+std::string upper(std::string_view s) {
+  std::string out(s);
+  for (char& ch : out) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return out;
+}
+
+/// Whether a header defines name, or a name that a C package of that name would declare.
+bool reserved(const std::string& name) {
+  const auto& headers = header_names();
+  if (keywords().count(name) || headers.count(name)) return true;
+  const std::vector<std::string> derived = c_names(name);
+  return std::any_of(derived.begin(), derived.end(),
+                     [&](const std::string& n) { return headers.count(n) > 0; });
+}
+
+/// Whether name starts with what the project reserves for itself whatever follows: "dyngen"
+/// (the library's names, dyngen_sincos, dyngen_kernels.hpp, and the check's namespace
+/// dyngen_check), and CMake's "CMAKE_" (a package's options are NAME_ISA and NAME_BUILD_CHECK),
+/// in any case. A suffix would not help.
+bool reserved_prefix(std::string_view name) {
+  const std::string s = upper(name);
+  return s.starts_with("DYNGEN") || s == "CMAKE" || s.starts_with("CMAKE_");
 }
 
 }  // namespace
@@ -164,7 +172,8 @@ std::string identifier(std::string_view name) {
   }
   while (!s.empty() && s.back() == '_') s.pop_back();
   if (s.empty()) s = "robot";
-  if (std::isdigit(static_cast<unsigned char>(s[0]))) s = "robot_" + s;
+  if (std::isdigit(static_cast<unsigned char>(s[0])) || reserved_prefix(s)) s = "robot_" + s;
+  if (reserved(s)) s += "_robot";
   if (s.size() > max_identifier) {
     // FNV-1a of the whole name, so that names which share their start stay apart
     std::uint32_t hash = 2166136261u;
@@ -173,11 +182,21 @@ std::string identifier(std::string_view name) {
     while (s.back() == '_') s.pop_back();
     s += fmt::format("_{:08x}", hash);
   }
-  if (reserved_words().count(s)) s += "_robot";
   return s;
 }
 
 bool is_identifier(std::string_view name) { return identifier(name) == name; }
+
+std::vector<std::string> c_names(std::string_view name) {
+  const std::string prefix = std::string(name) + "_", macro = upper(name) + "_";
+  std::vector<std::string> names;
+  for (const char* local : {"joint_names", "frame_names", "JointTrig", "joint_trig"})
+    names.push_back(prefix + local);
+  for (const Algorithm& a : algorithm_names())
+    names.insert(names.end(), {prefix + a, prefix + a + "_trig"});
+  for (const char* local : {"NQ", "NV", "NFRAMES", "DYNAMICS_H"}) names.push_back(macro + local);
+  return names;
+}
 
 std::string gnuplot_string(std::string_view text) {
   std::string out;

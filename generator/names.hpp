@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace dyngen::gen {
 
@@ -20,12 +21,17 @@ std::string safe_text(std::string_view text, bool keep_newlines = false);
 /// as it is, with \" \\ and \? (after a ?), every other byte as a three-digit octal escape.
 std::string string_literal(std::string_view text);
 
-/// An identifier made from a name: letters and digits kept, every run of other characters one
-/// underscore, none leading or trailing; "robot" when nothing is left, "robot_" before a
-/// leading digit; at most max_identifier characters (a longer name keeps its start and gets a
-/// hash of the whole, so that different long names stay different); and never a C or C++
-/// keyword, alternative token, common predefined or library macro, or a name that the C and C++
-/// libraries declare at global scope (a "_robot" is appended to those).
+/// An identifier made from a name, for the package's C++ namespace, C prefix, file prefix and
+/// CMake names: letters and digits kept, every run of other characters one underscore, none
+/// leading or trailing; "robot" when nothing is left; "robot_" before a leading digit and
+/// before a name that starts with "dyngen" (the project's own names) or "cmake" followed by
+/// nothing or "_" (CMake's), in any case; "_robot" after a C or C++ keyword, what harnesses
+/// declare beside the package (main, sh_write), a macro that builds define (NDEBUG, DEBUG), and a
+/// name that the headers which generated files include
+/// define as a macro or declare at global scope, or define as one of the name's c_names
+/// (generator/reserved_names.txt, which scripts/reserved_names.py makes by compiling them); and
+/// at most max_identifier characters (a longer result keeps its start and gets a hash of the
+/// whole name, so that different long names stay different).
 std::string identifier(std::string_view name);
 
 inline constexpr std::size_t max_identifier = 48;
@@ -38,6 +44,11 @@ bool is_identifier(std::string_view name);
 /// newlines and all) and every other byte as the four characters \xNN, in string_literal's
 /// form. The literal always holds valid UTF-8, so the str is made at import without fail.
 std::string python_literal(std::string_view text);
+
+/// The names that a C package of that name declares at global scope: name_rnea and
+/// name_rnea_trig for every algorithm, name_joint_trig, name_joint_names, name_frame_names,
+/// name_JointTrig, and the macros NAME_NQ, NAME_NV, NAME_NFRAMES and NAME_DYNAMICS_H.
+std::vector<std::string> c_names(std::string_view name);
 
 /// Text for a gnuplot double-quoted string: safe_text, with " and \ escaped.
 std::string gnuplot_string(std::string_view text);

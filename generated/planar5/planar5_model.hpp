@@ -28,34 +28,34 @@
 /// generated code. Numbers read back to the same bits.
 namespace planar5 {
 
-inline const dyngen::BodyRecord model_bodies[] = {
+inline const ::dyngen::BodyRecord model_bodies[] = {
     // body, joint, parent, joint type, axis, X_tree E (row-major), X_tree r, mass, h = m c,
     // I about the body origin (xx, yy, zz, xy, xz, yz)
-    {"link1", "link1_joint", -1, dyngen::JointType::RevoluteZ,
+    {"link1", "link1_joint", -1, ::dyngen::JointType::RevoluteZ,
      {0.0, 0.0, 1.0},
      {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0},
      {0.0, 0.0, 0.0},
      1.2, {0.42, 0.024, 0.0},
      {0.00148, 0.25699999999999995, 0.25748, (-0.0084), 0.0, 0.0}},
-    {"link2", "link2_joint", 0, dyngen::JointType::RevoluteZ,
+    {"link2", "link2_joint", 0, ::dyngen::JointType::RevoluteZ,
      {0.0, 0.0, 1.0},
      {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0},
      {1.0, 0.0, 0.0},
      0.9, {0.45, (-0.027), 0.0},
      {0.00181, 0.275, 0.27581, 0.0135, 0.0, 0.0}},
-    {"link3", "link3_joint", 1, dyngen::JointType::RevoluteZ,
+    {"link3", "link3_joint", 1, ::dyngen::JointType::RevoluteZ,
      {0.0, 0.0, 1.0},
      {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0},
      {0.8, 0.0, 0.0},
      0.7, {0.13999999999999999, 0.0, 0.0},
      {0.001, 0.058, 0.058, 0.0, 0.0, 0.0}},
-    {"link4", "link4_joint", 2, dyngen::JointType::Prismatic,
+    {"link4", "link4_joint", 2, ::dyngen::JointType::Prismatic,
      {1.0, 0.0, 0.0},
      {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0},
      {0.7, 0.0, 0.0},
      0.5, {0.15, 0.005, 0.0},
      {0.00055, 0.055, 0.05505, (-0.0015), 0.0, 0.0}},
-    {"link5", "link5_joint", 3, dyngen::JointType::RevoluteZ,
+    {"link5", "link5_joint", 3, ::dyngen::JointType::RevoluteZ,
      {0.0, 0.0, 1.0},
      {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0},
      {0.5, 0.0, 0.0},
@@ -65,8 +65,8 @@ inline const dyngen::BodyRecord model_bodies[] = {
 
 inline constexpr double model_gravity[3] = {0.0, (-9.81), 0.0};
 
-inline dyngen::Model<double> runtime_model() {
-  return dyngen::model_from_records(model_bodies, model_gravity);
+inline ::dyngen::Model<double> runtime_model() {
+  return ::dyngen::model_from_records(model_bodies, model_gravity);
 }
 
 }  // namespace planar5

@@ -92,7 +92,10 @@
 
 static_assert(FLT_EVAL_METHOD == 0, "excess precision would break bit equality");
 
-namespace {
+// The check's own names live in dyngen_check, a name that dyngen gives no robot (none starts
+// with dyngen), and it reaches the package's from the global namespace (::ur5::rnea): whatever
+// the robot is called, neither hides the other.
+namespace dyngen_check {
 
 using Scalar = double;
 constexpr int random_states = 10000;
@@ -102,7 +105,7 @@ constexpr int all_states = random_states + extreme_states;
 using Arrays = std::vector<std::vector<Scalar>>;
 using Spec = dyngen::AlgorithmSpec<Scalar>;
 
-const dyngen::Model<Scalar> model = ur5::runtime_model().cast<Scalar>();
+const dyngen::Model<Scalar> model = ::ur5::runtime_model().cast<Scalar>();
 
 /// Doubles from raw mt19937_64 bits: the same on every standard library.
 double uniform(std::mt19937_64& rng, double lo, double hi) {
@@ -262,162 +265,161 @@ void check_batch(const char* name, Batch batch, Many many) {
   }
 }
 
-}  // namespace
-
 TEST(ur5, model_tables_match_generated_header) {
-  ASSERT_EQ(model.nq, ur5::nq);
-  ASSERT_EQ(model.nv, ur5::nv);
+  ASSERT_EQ(model.nq, ::ur5::nq);
+  ASSERT_EQ(model.nv, ::ur5::nv);
   const std::vector<std::string> names = dyngen::velocity_names(model);
-  for (int k = 0; k < model.nv; ++k) EXPECT_EQ(names[k], ur5::joint_names[k]);
+  for (int k = 0; k < model.nv; ++k) EXPECT_EQ(names[k], ::ur5::joint_names[k]);
 }
 
 TEST(ur5, rnea_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("rnea", [](const Arrays& x, Arrays& y) { ur5::rnea(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
+  check_bit_for_bit("rnea", [](const Arrays& x, Arrays& y) { ::ur5::rnea(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 
 TEST(ur5, rnea_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "rnea", [](const Arrays& x, Arrays& y) { ur5::rnea_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::rnea_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "rnea", [](const Arrays& x, Arrays& y) { ::ur5::rnea_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::rnea_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 
 TEST(ur5, crba_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("crba", [](const Arrays& x, Arrays& y) { ur5::crba(x[0].data(), y[0].data()); });
+  check_bit_for_bit("crba", [](const Arrays& x, Arrays& y) { ::ur5::crba(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, crba_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "crba", [](const Arrays& x, Arrays& y) { ur5::crba_batch(x[0].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::crba_many(count, x[0].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "crba", [](const Arrays& x, Arrays& y) { ::ur5::crba_batch(x[0].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::crba_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, aba_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("aba", [](const Arrays& x, Arrays& y) { ur5::aba(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
+  check_bit_for_bit("aba", [](const Arrays& x, Arrays& y) { ::ur5::aba(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 
 TEST(ur5, aba_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "aba", [](const Arrays& x, Arrays& y) { ur5::aba_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::aba_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "aba", [](const Arrays& x, Arrays& y) { ::ur5::aba_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::aba_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 
 TEST(ur5, gravity_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("gravity", [](const Arrays& x, Arrays& y) { ur5::gravity(x[0].data(), y[0].data()); });
+  check_bit_for_bit("gravity", [](const Arrays& x, Arrays& y) { ::ur5::gravity(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, gravity_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "gravity", [](const Arrays& x, Arrays& y) { ur5::gravity_batch(x[0].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::gravity_many(count, x[0].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "gravity", [](const Arrays& x, Arrays& y) { ::ur5::gravity_batch(x[0].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::gravity_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, nle_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("nle", [](const Arrays& x, Arrays& y) { ur5::nle(x[0].data(), x[1].data(), y[0].data()); });
+  check_bit_for_bit("nle", [](const Arrays& x, Arrays& y) { ::ur5::nle(x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, nle_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "nle", [](const Arrays& x, Arrays& y) { ur5::nle_batch(x[0].data(), x[1].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::nle_many(count, x[0].data(), x[1].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "nle", [](const Arrays& x, Arrays& y) { ::ur5::nle_batch(x[0].data(), x[1].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::nle_many(count, x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, minv_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("minv", [](const Arrays& x, Arrays& y) { ur5::minv(x[0].data(), y[0].data()); });
+  check_bit_for_bit("minv", [](const Arrays& x, Arrays& y) { ::ur5::minv(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, minv_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "minv", [](const Arrays& x, Arrays& y) { ur5::minv_batch(x[0].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::minv_many(count, x[0].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "minv", [](const Arrays& x, Arrays& y) { ::ur5::minv_batch(x[0].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::minv_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, rnea_derivatives_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("rnea_derivatives", [](const Arrays& x, Arrays& y) { ur5::rnea_derivatives(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); });
+  check_bit_for_bit("rnea_derivatives", [](const Arrays& x, Arrays& y) { ::ur5::rnea_derivatives(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, rnea_derivatives_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "rnea_derivatives", [](const Arrays& x, Arrays& y) { ur5::rnea_derivatives_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::rnea_derivatives_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); });
+  check_batch<::ur5::lanes>(
+      "rnea_derivatives", [](const Arrays& x, Arrays& y) { ::ur5::rnea_derivatives_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::rnea_derivatives_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, aba_derivatives_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("aba_derivatives", [](const Arrays& x, Arrays& y) { ur5::aba_derivatives(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); });
+  check_bit_for_bit("aba_derivatives", [](const Arrays& x, Arrays& y) { ::ur5::aba_derivatives(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); });
 }
 
 TEST(ur5, aba_derivatives_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "aba_derivatives", [](const Arrays& x, Arrays& y) { ur5::aba_derivatives_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::aba_derivatives_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); });
+  check_batch<::ur5::lanes>(
+      "aba_derivatives", [](const Arrays& x, Arrays& y) { ::ur5::aba_derivatives_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::aba_derivatives_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); });
 }
 
 TEST(ur5, frame_placements_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_placements", [](const Arrays& x, Arrays& y) { ur5::frame_placements(x[0].data(), y[0].data(), y[1].data()); });
+  check_bit_for_bit("frame_placements", [](const Arrays& x, Arrays& y) { ::ur5::frame_placements(x[0].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, frame_placements_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "frame_placements", [](const Arrays& x, Arrays& y) { ur5::frame_placements_batch(x[0].data(), y[0].data(), y[1].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::frame_placements_many(count, x[0].data(), y[0].data(), y[1].data()); });
+  check_batch<::ur5::lanes>(
+      "frame_placements", [](const Arrays& x, Arrays& y) { ::ur5::frame_placements_batch(x[0].data(), y[0].data(), y[1].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_placements_many(count, x[0].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, frame_jacobians_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_jacobians", [](const Arrays& x, Arrays& y) { ur5::frame_jacobians(x[0].data(), y[0].data()); });
+  check_bit_for_bit("frame_jacobians", [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_jacobians_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "frame_jacobians", [](const Arrays& x, Arrays& y) { ur5::frame_jacobians_batch(x[0].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::frame_jacobians_many(count, x[0].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "frame_jacobians", [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_batch(x[0].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_jacobians_local_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_jacobians_local", [](const Arrays& x, Arrays& y) { ur5::frame_jacobians_local(x[0].data(), y[0].data()); });
+  check_bit_for_bit("frame_jacobians_local", [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_local(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_jacobians_local_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "frame_jacobians_local", [](const Arrays& x, Arrays& y) { ur5::frame_jacobians_local_batch(x[0].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::frame_jacobians_local_many(count, x[0].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "frame_jacobians_local", [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_local_batch(x[0].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_local_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_accelerations_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_accelerations", [](const Arrays& x, Arrays& y) { ur5::frame_accelerations(x[0].data(), x[1].data(), y[0].data()); });
+  check_bit_for_bit("frame_accelerations", [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations(x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_accelerations_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "frame_accelerations", [](const Arrays& x, Arrays& y) { ur5::frame_accelerations_batch(x[0].data(), x[1].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::frame_accelerations_many(count, x[0].data(), x[1].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "frame_accelerations", [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_batch(x[0].data(), x[1].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_many(count, x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_accelerations_local_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_accelerations_local", [](const Arrays& x, Arrays& y) { ur5::frame_accelerations_local(x[0].data(), x[1].data(), y[0].data()); });
+  check_bit_for_bit("frame_accelerations_local", [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_local(x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_accelerations_local_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "frame_accelerations_local", [](const Arrays& x, Arrays& y) { ur5::frame_accelerations_local_batch(x[0].data(), x[1].data(), y[0].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::frame_accelerations_local_many(count, x[0].data(), x[1].data(), y[0].data()); });
+  check_batch<::ur5::lanes>(
+      "frame_accelerations_local", [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_local_batch(x[0].data(), x[1].data(), y[0].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_local_many(count, x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, com_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("com", [](const Arrays& x, Arrays& y) { ur5::com(x[0].data(), y[0].data(), y[1].data()); });
+  check_bit_for_bit("com", [](const Arrays& x, Arrays& y) { ::ur5::com(x[0].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, com_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "com", [](const Arrays& x, Arrays& y) { ur5::com_batch(x[0].data(), y[0].data(), y[1].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::com_many(count, x[0].data(), y[0].data(), y[1].data()); });
+  check_batch<::ur5::lanes>(
+      "com", [](const Arrays& x, Arrays& y) { ::ur5::com_batch(x[0].data(), y[0].data(), y[1].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::com_many(count, x[0].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, centroidal_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("centroidal", [](const Arrays& x, Arrays& y) { ur5::centroidal(x[0].data(), x[1].data(), y[0].data(), y[1].data()); });
+  check_bit_for_bit("centroidal", [](const Arrays& x, Arrays& y) { ::ur5::centroidal(x[0].data(), x[1].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, centroidal_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<ur5::lanes>(
-      "centroidal", [](const Arrays& x, Arrays& y) { ur5::centroidal_batch(x[0].data(), x[1].data(), y[0].data(), y[1].data()); },
-      [](long count, const Arrays& x, Arrays& y) { ur5::centroidal_many(count, x[0].data(), x[1].data(), y[0].data(), y[1].data()); });
+  check_batch<::ur5::lanes>(
+      "centroidal", [](const Arrays& x, Arrays& y) { ::ur5::centroidal_batch(x[0].data(), x[1].data(), y[0].data(), y[1].data()); },
+      [](long count, const Arrays& x, Arrays& y) { ::ur5::centroidal_many(count, x[0].data(), x[1].data(), y[0].data(), y[1].data()); });
 }
 
+}  // namespace dyngen_check

@@ -76,40 +76,40 @@
 /// generated code. Numbers read back to the same bits.
 namespace ur5 {
 
-inline const dyngen::BodyRecord model_bodies[] = {
+inline const ::dyngen::BodyRecord model_bodies[] = {
     // body, joint, parent, joint type, axis, X_tree E (row-major), X_tree r, mass, h = m c,
     // I about the body origin (xx, yy, zz, xy, xz, yz)
-    {"shoulder_link", "shoulder_pan_joint", -1, dyngen::JointType::RevoluteZ,
+    {"shoulder_link", "shoulder_pan_joint", -1, ::dyngen::JointType::RevoluteZ,
      {0.0, 0.0, 1.0},
      {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0},
      {0.0, 0.0, 0.089159},
      3.7, {0.0, 0.0, 0.0},
      {0.010267495893, 0.010267495893, 0.00666, 0.0, 0.0, 0.0}},
-    {"upper_arm_link", "shoulder_lift_joint", 0, dyngen::JointType::RevoluteY,
+    {"upper_arm_link", "shoulder_lift_joint", 0, ::dyngen::JointType::RevoluteY,
      {0.0, 1.0, 0.0},
      {4.896638650109253e-12, 0.0, (-1.0), 0.0, 1.0, 0.0, 1.0, 0.0, 4.896638650109253e-12},
      {0.0, 0.13585, 0.0},
      8.393, {0.0, 0.0, 2.3500400000000004},
      {0.8849018759100001, 0.8849018759100001, 0.0151074, 0.0, 0.0, 0.0}},
-    {"forearm_link", "elbow_joint", 1, dyngen::JointType::RevoluteY,
+    {"forearm_link", "elbow_joint", 1, ::dyngen::JointType::RevoluteY,
      {0.0, 1.0, 0.0},
      {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0},
      {0.0, (-0.1197), 0.425},
      2.275, {0.0, 0.0, 0.56875},
      {0.19163081355599998, 0.19163081355599998, 0.004095, 0.0, 0.0, 0.0}},
-    {"wrist_1_link", "wrist_1_joint", 2, dyngen::JointType::RevoluteY,
+    {"wrist_1_link", "wrist_1_joint", 2, ::dyngen::JointType::RevoluteY,
      {0.0, 1.0, 0.0},
      {4.896638650109253e-12, 0.0, (-1.0), 0.0, 1.0, 0.0, 1.0, 0.0, 4.896638650109253e-12},
      {0.0, 0.0, 0.39225},
      1.219, {0.0, 0.0, 0.0},
      {0.111172755531, 0.111172755531, 0.21942, 0.0, 0.0, 0.0}},
-    {"wrist_2_link", "wrist_2_joint", 3, dyngen::JointType::RevoluteZ,
+    {"wrist_2_link", "wrist_2_joint", 3, ::dyngen::JointType::RevoluteZ,
      {0.0, 0.0, 1.0},
      {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0},
      {0.0, 0.093, 0.0},
      1.219, {0.0, 0.0, 0.0},
      {0.111172755531, 0.111172755531, 0.21942, 0.0, 0.0, 0.0}},
-    {"wrist_3_link", "wrist_3_joint", 4, dyngen::JointType::RevoluteY,
+    {"wrist_3_link", "wrist_3_joint", 4, ::dyngen::JointType::RevoluteY,
      {0.0, 1.0, 0.0},
      {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0},
      {0.0, 0.0, 0.09465},
@@ -119,7 +119,7 @@ inline const dyngen::BodyRecord model_bodies[] = {
 
 inline constexpr double model_gravity[3] = {0.0, 0.0, (-9.81)};
 
-inline const dyngen::FrameRecord model_frames[] = {
+inline const ::dyngen::FrameRecord model_frames[] = {
     // frame, body (-1: the base), placement E (row-major) and r from the body's frame
     {"ee_link", 5,
      {4.896638650109253e-12, 1.0, 0.0, (-1.0), 4.896638650109253e-12, 0.0, 0.0, 0.0, 1.0},
@@ -129,8 +129,8 @@ inline const dyngen::FrameRecord model_frames[] = {
      {0.0, 0.0823, 0.0}},
 };
 
-inline dyngen::Model<double> runtime_model() {
-  return dyngen::model_from_records(model_bodies, model_gravity, model_frames);
+inline ::dyngen::Model<double> runtime_model() {
+  return ::dyngen::model_from_records(model_bodies, model_gravity, model_frames);
 }
 
 }  // namespace ur5

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,7 +23,9 @@ namespace dyngen::gen {
 namespace {
 
 namespace fs = std::filesystem;
+using test::CliResult;
 using test::read;
+using test::run_dyngen;
 using test::ScratchTest;
 
 TEST(SafeText, EscapesWhatCouldEndOrSpliceALine) {
@@ -63,6 +66,82 @@ TEST(Identifier, IsAPlainNameThatIsNotReserved) {
     EXPECT_TRUE(is_identifier(name)) << name;
   for (const char* name : {"int", "2dof", "a__b", "_a", "a-b", "", "sin"})
     EXPECT_FALSE(is_identifier(name)) << name;
+}
+
+// Issue 40: packages of robots with these names did not compile, as the headers that their
+// files include (POSIX through GoogleTest, GoogleTest, Python.h) declare or define them.
+TEST(Identifier, AppendsRobotToWhatTheHeadersDefine) {
+  for (const char* name :
+       {"pid_t", "ssize_t", "uint", "timespec", "pthread_t", "M_PI", "DBL_MAX", "LITTLE_ENDIAN",
+        "EINTR", "GTEST_OS_LINUX", "HAVE_UNISTD_H", "INT32_MAX", "SEEK_SET", "PATH_MAX", "WEOF",
+        "SIGINT", "SIZEOF_INT", "testing", "pybind11", "nlohmann", "Eigen", "benchmark"}) {
+    EXPECT_EQ(identifier(name), std::string(name) + "_robot");
+    EXPECT_TRUE(is_identifier(identifier(name))) << name;
+  }
+  // the check's and the Python module's own names stay: the templates keep theirs apart
+  for (const char* name :
+       {"model", "Arrays", "Spec", "py", "Scalar", "Array", "Argument", "Function", "call"})
+    EXPECT_EQ(identifier(name), name);
+  // a name the headers leave alone, but whose C package would not: gmp.h (the report
+  // harness's, through MPFR) defines mpz_com, the C function com of a robot named mpz
+  EXPECT_EQ(identifier("mpz"), "mpz_robot");
+  // a reserved name near the limit keeps within it, and stays apart from the name cut there
+  const std::string eigen = "EIGEN_DEFAULT_EMPTY_CONSTRUCTOR_AND_DESTRUCTOR";
+  EXPECT_LE(identifier(eigen).size(), max_identifier);
+  EXPECT_NE(identifier(eigen), identifier(eigen + "_robot_x"));
+  EXPECT_TRUE(is_identifier(identifier(eigen)));
+}
+
+TEST(Identifier, PrefixesTheProjectsAndCMakesOwnNames) {
+  EXPECT_EQ(identifier("dyngen_sincos"), "robot_dyngen_sincos");
+  EXPECT_EQ(identifier("dyngen"), "robot_dyngen");
+  EXPECT_EQ(identifier("DynGen arm"), "robot_DynGen_arm");
+  EXPECT_EQ(identifier("dyngenx"), "robot_dyngenx");
+  // CMake reserves every variable that starts with CMAKE_, in any case: cmake_arm's options
+  // would be CMAKE_ARM_ISA and CMAKE_ARM_BUILD_CHECK
+  EXPECT_EQ(identifier("cmake"), "robot_cmake");
+  EXPECT_EQ(identifier("CMake arm"), "robot_CMake_arm");
+  EXPECT_EQ(identifier("cmakearm"), "cmakearm");
+  const std::string cut = identifier("dyngen" + std::string(100, 'x'));
+  EXPECT_EQ(cut.size(), max_identifier);
+  EXPECT_EQ(cut.rfind("robot_dyngen", 0), 0u) << cut;
+}
+
+class CNames : public ScratchTest {};
+
+// c_names lists every name a C package declares outside its files: the generated header
+// declares no other with the package's prefix.
+TEST_F(CNames, CoverWhatTheCHeaderDeclares) {
+  ASSERT_EQ(run_dyngen({fs::path(DYNGEN_TEST_MODELS) / "double_pendulum.urdf", "--lang", "c",
+                        "--algorithms", "all", "--jacobian-frame", "both", "--name", "dp", "-o",
+                        (dir / "gen").string(), "--quiet"},
+                       dir)
+                .status,
+            0);
+  const std::string header = read(dir / "gen" / "dp_dynamics.h");
+  const std::vector<std::string> names = c_names("dp");
+  const std::regex prefixed(R"(\b(dp|DP)_[A-Za-z0-9_]+)");
+  int declared = 0;
+  for (std::sregex_iterator m(header.begin(), header.end(), prefixed), end; m != end; ++m, ++declared)
+    EXPECT_NE(std::find(names.begin(), names.end(), m->str()), names.end()) << m->str();
+  EXPECT_GT(declared, 30);
+}
+
+class NameOption : public ScratchTest {};
+
+TEST_F(NameOption, RefusesAReservedNameAndSuggestsOne) {
+  for (const auto& [name, suggestion] : {std::pair{"pid_t", "pid_t_robot"},
+                                         std::pair{"dyngen_sincos", "robot_dyngen_sincos"}}) {
+    const CliResult r = run_dyngen(
+        {fs::path(DYNGEN_TEST_MODELS) / "double_pendulum.urdf", "--name", name, "-o",
+         (dir / "gen").string()},
+        dir);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find(fmt::format("--name {}: not usable", name)), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(fmt::format("for example --name {}\n", suggestion)), std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir / "gen"));
+  }
 }
 
 TEST(MarkdownAndGnuplot, KeepTheirQuoting) {
