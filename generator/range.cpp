@@ -1,6 +1,7 @@
 #include "range.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -55,68 +56,52 @@ void run_call(const KernelRecord& call, const std::vector<std::vector<T>>& in,
     throw std::logic_error("internal error: no range evaluation of kernel " + call.kernel);
 }
 
-/// The value of every live node at one state (dead ones 0), computed in T with the operations
-/// of the generated code, so the bits it computes.
-template <class T>
-std::vector<T> evaluate(const Program<T>& program, const std::vector<bool>& live,
-                        const std::map<std::string, std::vector<T>>& state) {
-  const Graph<T>& g = program.graph;
-  std::vector<T> x(g.nodes.size(), T(0));
-  std::vector<std::vector<T>> results(g.calls.size());  // each call's outputs end to end
-  for (std::size_t id = 0; id < g.nodes.size(); ++id) {
-    if (!live[id]) continue;
-    const Node<T>& n = g.nodes[id];
-    const T a = n.a >= 0 ? x[n.a] : T(0), b = n.b >= 0 ? x[n.b] : T(0);
-    T sin_a, cos_a;
-    switch (n.op) {
-      case Op::Const: x[id] = n.value; break;
-      case Op::Input: {
-        const InputRef& in = g.inputs[n.input];
-        x[id] = state.at(in.array).at(static_cast<std::size_t>(in.index));
-        break;
-      }
-      case Op::Neg: x[id] = -a; break;
-      case Op::Add: x[id] = a + b; break;
-      case Op::Sub: x[id] = a - b; break;
-      case Op::Mul: x[id] = a * b; break;
-      case Op::Div: x[id] = a / b; break;
-      case Op::Sin:
-      case Op::Cos:
-        sincos(a, sin_a, cos_a);  // the runtime's, as the generated code calls it
-        x[id] = n.op == Op::Sin ? sin_a : cos_a;
-        break;
-      case Op::Call: {
-        const KernelRecord& call = g.calls[n.a];
-        std::vector<std::vector<T>> in, out;
-        for (const std::vector<int>& array : call.inputs) {
-          std::vector<T>& v = in.emplace_back();
-          for (const int e : array) v.push_back(x[e]);
-        }
-        for (const std::size_t size : call.outputs) out.emplace_back(size);
-        run_call(call, in, out);
-        for (const std::vector<T>& v : out)
-          results[n.a].insert(results[n.a].end(), v.begin(), v.end());
-        break;
-      }
-      case Op::Result:
-        x[id] = results[g.nodes[n.a].a].at(static_cast<std::size_t>(n.input));
-        break;
-    }
-  }
-  return x;
-}
-
-/// |op(a, b)| in long double: what node n would be without T's range.
-template <class T>
-long double unbounded(const Node<T>& n, const std::vector<T>& x) {
-  const long double a = n.a >= 0 ? x[n.a] : 0, b = n.b >= 0 ? x[n.b] : 0;
-  switch (n.op) {
-    case Op::Add: return std::fabs(a + b);
-    case Op::Sub: return std::fabs(a - b);
-    case Op::Mul: return std::fabs(a * b);
-    case Op::Div: return std::fabs(a / b);
+/// |x op y| in long double: what a value would be without T's range.
+long double unbounded(Op op, long double x, long double y) {
+  switch (op) {
+    case Op::Add: return std::fabs(x + y);
+    case Op::Sub: return std::fabs(x - y);
+    case Op::Mul: return std::fabs(x * y);
+    case Op::Div: return std::fabs(x / y);
     default: return HUGE_VALL;  // a kernel's result: computed inside its loops
   }
+}
+
+constexpr int states = 2 * range_samples;  // the typical ones, then the extreme ones
+
+template <class T>
+using Lanes = std::array<T, states>;
+
+/// Each input's value at every state, by the index of Graph::inputs.
+template <class T>
+std::vector<Lanes<T>> input_values(const Graph<T>& g, const Model<double>& model) {
+  std::vector<Lanes<T>> values(g.inputs.size());
+  for (int s = 0; s < states; ++s) {
+    const auto state = sample_state<T>(model, s >= range_samples, s % range_samples);
+    for (std::size_t k = 0; k < g.inputs.size(); ++k)
+      values[k][s] = state.at(g.inputs[k].array).at(static_cast<std::size_t>(g.inputs[k].index));
+  }
+  return values;
+}
+
+/// A kernel call's outputs at every state, laid end to end, from its inputs' values.
+template <class T>
+std::vector<Lanes<T>> run_call(const KernelRecord& call, const auto& value_of) {
+  std::vector<Lanes<T>> results;
+  for (const std::size_t size : call.outputs) results.resize(results.size() + size);
+  for (int s = 0; s < states; ++s) {
+    std::vector<std::vector<T>> in, out;
+    for (const std::vector<int>& array : call.inputs) {
+      std::vector<T>& x = in.emplace_back();
+      for (const int id : array) x.push_back(value_of(id)[s]);
+    }
+    for (const std::size_t size : call.outputs) out.emplace_back(size);
+    run_call(call, in, out);
+    std::size_t e = 0;
+    for (const std::vector<T>& y : out)
+      for (const T x : y) results[e++][s] = x;
+  }
+  return results;
 }
 
 }  // namespace
@@ -124,34 +109,83 @@ long double unbounded(const Node<T>& n, const std::vector<T>& x) {
 template <class T>
 RangeEstimate estimate_range(const Program<T>& program, const Model<double>& model) {
   const Graph<T>& g = program.graph;
-  std::vector<bool> live(g.nodes.size(), false);
-  for (const int id : program.stored) live[id] = true;
-  for (int id = static_cast<int>(g.nodes.size()) - 1; id >= 0; --id)
-    if (live[id]) g.for_each_operand(id, [&](int x) { live[x] = true; });
+  const int n = static_cast<int>(g.nodes.size());
+  // the live nodes, and the last that reads each: its value's slot is free after that
+  std::vector<char> live(n, 0);
+  for (const int id : program.stored) live[id] = 1;
+  for (int id = n - 1; id >= 0; --id)
+    if (live[id]) g.for_each_operand(id, [&](int x) { live[x] = 1; });
+  std::vector<int> last(n, -1);
+  for (int id = 0; id < n; ++id)
+    if (live[id]) g.for_each_operand(id, [&](int x) { last[x] = id; });
+
+  const std::vector<Lanes<T>> inputs = input_values(g, model);
+  std::vector<Lanes<T>> values, results;  // values by slot; the current call's results
+  std::vector<int> slot(n, -1), free_slots;
+  const auto value_of = [&](int id) -> const Lanes<T>& { return values[slot[id]]; };
   RangeEstimate estimate;
-  for (const bool extreme : {false, true}) {
-    Range& r = extreme ? estimate.extreme : estimate.typical;
-    for (int s = 0; s < range_samples; ++s) {
-      const std::vector<T> x = evaluate(program, live, sample_state<T>(model, extreme, s));
-      for (std::size_t id = 0; id < x.size(); ++id) {
-        const Node<T>& n = g.nodes[id];
-        if (!live[id] || n.op == Op::Call || n.op == Op::Input || n.op == Op::Const) continue;
-        const int node = static_cast<int>(id);
-        if (std::isfinite(x[id])) {
-          r.largest = std::max(r.largest, static_cast<long double>(std::fabs(x[id])));
-        } else if (r.overflow < 0 || node <= r.overflow) {
-          const long double would_be = unbounded(n, x);
-          if (r.overflow != node || !(would_be <= r.overflow_value)) r.overflow_value = would_be;
-          r.overflow = node;
+  for (int id = 0; id < n; ++id) {
+    if (!live[id]) continue;
+    const Node<T>& node = g.nodes[id];
+    if (free_slots.empty()) {
+      free_slots.push_back(static_cast<int>(values.size()));
+      values.emplace_back();
+    }
+    slot[id] = free_slots.back();
+    free_slots.pop_back();
+    Lanes<T>& y = values[slot[id]];
+    const bool call = node.op == Op::Call || node.op == Op::Result;  // a: a call, not a value
+    const Lanes<T>* a = node.a >= 0 && !call ? &value_of(node.a) : nullptr;
+    const Lanes<T>* b = node.b >= 0 ? &value_of(node.b) : nullptr;
+    const auto each = [&](const auto& f) {
+      for (int s = 0; s < states; ++s) y[s] = f(s);
+    };
+    switch (node.op) {
+      case Op::Const: y.fill(node.value); break;
+      case Op::Input: y = inputs[node.input]; break;
+      case Op::Neg: each([&](int s) { return -(*a)[s]; }); break;
+      case Op::Add: each([&](int s) { return (*a)[s] + (*b)[s]; }); break;
+      case Op::Sub: each([&](int s) { return (*a)[s] - (*b)[s]; }); break;
+      case Op::Mul: each([&](int s) { return (*a)[s] * (*b)[s]; }); break;
+      case Op::Div: each([&](int s) { return (*a)[s] / (*b)[s]; }); break;
+      case Op::Sin:
+      case Op::Cos:
+        each([&](int s) {
+          T sin_a, cos_a;
+          sincos((*a)[s], sin_a, cos_a);  // the runtime's, as the generated code calls it
+          return node.op == Op::Sin ? sin_a : cos_a;
+        });
+        break;
+      case Op::Call: break;
+      case Op::Result: y = results.at(static_cast<std::size_t>(node.input)); break;
+    }
+    if (node.op == Op::Call) results = run_call<T>(g.calls[node.a], value_of);
+    if (node.op != Op::Const && node.op != Op::Input && node.op != Op::Call)
+      for (const bool extreme : {false, true}) {
+        Range& r = extreme ? estimate.extreme : estimate.typical;
+        T largest = 0;  // NaN and the infinities fail the comparison
+        bool finite = true;
+        for (int s = extreme ? range_samples : 0; s < (extreme ? states : range_samples); ++s) {
+          const T m = std::fabs(y[s]);
+          largest = m > largest && m <= std::numeric_limits<T>::max() ? m : largest;
+          finite = finite && m <= std::numeric_limits<T>::max();
         }
-        if (n.op != Op::Div) continue;
-        const long double d = std::fabs(x[n.b]);
-        if (d < std::numeric_limits<T>::min() && (r.tiny_divisor < 0 || node <= r.tiny_divisor)) {
-          if (r.tiny_divisor != node || d < r.divisor_value) r.divisor_value = d;
-          r.tiny_divisor = node;
+        r.largest = std::max(r.largest, static_cast<long double>(largest));
+        if (finite || r.overflow >= 0) continue;
+        // the first value beyond the range, and what it would be at its worst state
+        r.overflow = id;
+        for (int s = extreme ? range_samples : 0; s < (extreme ? states : range_samples); ++s) {
+          const long double would_be = unbounded(node.op, a ? (*a)[s] : 0, b ? (*b)[s] : 0);
+          if (!(std::fabs(y[s]) <= std::numeric_limits<T>::max()) &&
+              !(would_be <= r.overflow_value))  // NaN (0 / 0) too
+            r.overflow_value = would_be;
         }
       }
-    }
+    // free the slots of the values no later node reads, this one's too if none does
+    g.for_each_operand(id, [&](int x) {
+      if (last[x] == id && slot[x] >= 0) free_slots.push_back(slot[x]), slot[x] = -1;
+    });
+    if (last[id] < 0) free_slots.push_back(slot[id]), slot[id] = -1;
   }
   return estimate;
 }

@@ -1,6 +1,6 @@
 // How large the numbers of a traced program get: every live node's value at sampled states,
-// computed in long double, one pass over the graph per state, against the range of the scalar
-// the code computes in (docs/numerics.md, "Range").
+// computed as the generated code computes it, in one pass over the graph, against the range of
+// its scalar (docs/numerics.md, "Range").
 #pragma once
 
 #include "dyngen/model.hpp"
@@ -16,13 +16,10 @@ inline constexpr int range_samples = 8;
 
 /// What the values reach at one kind of state.
 struct Range {
-  long double largest = 0;     // the largest |value| of a live node
-  int overflow = -1;           // the first live node beyond the scalar's largest finite
-                               // number (or not finite) at one of the states; -1: none
-  long double overflow_value = 0;  // its |value| there
-  int tiny_divisor = -1;       // the first live division by a number below the scalar's
-                               // smallest normal one at one of the states; -1: none
-  long double divisor_value = 0;   // that number's |value| there
+  long double largest = 0;         // the largest finite |value| of a live node
+  int overflow = -1;               // the first live node that is not finite at one of the
+                                   // states (beyond the scalar's range); -1: none
+  long double overflow_value = 0;  // what it would be there without the scalar's range
 };
 
 struct RangeEstimate {
