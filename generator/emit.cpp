@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <queue>
 #include <set>
@@ -507,6 +508,70 @@ long lane_fills(const Program<T>& program, const std::vector<Section>& sections,
   return static_cast<long>(fills.size());
 }
 
+/// Runs of at least this many +0 entries of an output are stored by a loop (one line where the
+/// stores would be as many).
+inline constexpr std::size_t min_zero_run = 8;
+
+/// The stores of the outputs that no kernel wrote in place (operand(id): a node's value as
+/// code). Exact zeros are not stored one by one (a frame's Jacobian columns of the joints off
+/// its path): an array at least half of whose entries are +0 is first zero-filled by one loop,
+/// then gets its other entries; otherwise each run of min_zero_run or more is a loop. Compilers
+/// make these loops vector stores (and call no memset under -ffreestanding).
+template <class T>
+std::string output_stores(const Program<T>& program, const Model<double>& model,
+                          const Dialect& dialect, const std::vector<bool>& output_in_place,
+                          const std::function<std::string(int)>& operand) {
+  std::string out = "    // ---- outputs\n";
+  std::size_t stored = 0;
+  for (std::size_t a = 0; a < program.outputs.size(); ++a) {
+    const ProgramArray& array = program.outputs[a];
+    const std::string_view name = array.spec.name;
+    const int* entry = program.stored.data() + stored;
+    stored += array.size;
+    if (output_in_place[a]) {
+      out += fmt::format("    // {}: written by the kernel\n", name);
+      continue;
+    }
+    auto is_zero = [&](std::size_t k) {
+      const Node<T>& n = program.graph.nodes[entry[k]];
+      return n.op == Op::Const && n.value == T(0) && !std::signbit(n.value);
+    };
+    // entries [begin, end) set to 0 (batch arrays hold `lanes` numbers per entry)
+    auto zero_loop = [&](std::size_t begin, std::size_t end, const std::string& comment) {
+      const char* lanes = dialect.batch() ? " * lanes" : "";
+      return fmt::format("    for (int k = {}{}; k < {}{}; ++k) {}[k] = {};{}\n", begin,
+                         begin > 0 ? lanes : "", end, lanes, name, literal(T(0)), comment);
+    };
+    std::size_t zeros = 0;
+    for (std::size_t k = 0; k < array.size; ++k) zeros += is_zero(k);
+    const bool fill = 2 * zeros >= array.size && zeros >= min_zero_run;
+    if (fill)
+      out += zero_loop(0, array.size,
+                       fmt::format("  // {} of its {} entries are 0", zeros, array.size));
+    // an array with a block per frame says whose block begins; zero runs end there
+    const std::size_t block = array.spec.extent.per_frame && !model.frames.empty()
+                                  ? array.size / model.frames.size()
+                                  : array.size;
+    for (std::size_t k = 0; k < array.size;) {
+      if (block < array.size && k % block == 0)
+        out += fmt::format("    // frame '{}'\n", safe_text(model.frames[k / block].name));
+      std::size_t end = k;
+      while (!fill && end < array.size && is_zero(end) && (end == k || end % block != 0)) ++end;
+      if (end - k >= min_zero_run) {
+        out += zero_loop(k, end, "");
+        k = end;
+        continue;
+      }
+      if (!(fill && is_zero(k)))
+        out += dialect.batch()
+                   ? fmt::format("    store({} + {} * lanes, {});\n", name, k, operand(entry[k]))
+                   : fmt::format("    {}[{}] = {};\n", name, k, operand(entry[k]));
+      ++k;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 template <class T>
@@ -920,29 +985,7 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
       out += "\n";
     }
   }
-  out += "    // ---- outputs\n";
-  std::size_t stored = 0;
-  for (std::size_t a = 0; a < program.outputs.size(); ++a) {
-    const ProgramArray& array = program.outputs[a];
-    if (output_in_place[a])
-      out += fmt::format("    // {}: written by the kernel\n", array.spec.name);
-    else {
-      // an array with a block per frame says whose block begins
-      const std::size_t frames = array.spec.extent.per_frame ? model.frames.size() : 0;
-      for (std::size_t k = 0; k < array.size; ++k) {
-        if (frames > 0 && k % (array.size / frames) == 0)
-          out += fmt::format("    // frame '{}'\n",
-                             safe_text(model.frames[k / (array.size / frames)].name));
-        if (dialect.batch())
-          out += fmt::format("    store({} + {} * lanes, {});\n", array.spec.name, k,
-                             operand(program.stored[stored + k]));
-        else
-          out += fmt::format("    {}[{}] = {};\n", array.spec.name, k,
-                             operand(program.stored[stored + k]));
-      }
-    }
-    stored += array.size;
-  }
+  out += output_stores(program, model, dialect, output_in_place, operand);
   return code;
 }
 

@@ -11,6 +11,7 @@
 
 #include "footprint.hpp"
 #include "names.hpp"
+#include "range.hpp"
 #include "template.hpp"
 
 namespace dyngen::gen {
@@ -36,6 +37,15 @@ long long crba_column_steps(const Model<double>& model) {
     steps += joint_nv(model.joint_type[i]) * depth[i];
   }
   return steps;
+}
+
+/// The Jacobian columns of the frames: for each frame, the degrees of freedom between it and
+/// the base.
+long long frame_columns(const Model<double>& model) {
+  long long columns = 0;
+  for (const Frame<double>& f : model.frames)
+    for (int j = f.body; j >= 0; j = model.parent[j]) columns += joint_nv(model.joint_type[j]);
+  return columns;
 }
 
 std::string upper(std::string s) {
@@ -402,6 +412,89 @@ bool uses_frames(const Algorithm& a) {
 
 namespace {
 
+/// Where a traced node was recorded: "at link 'forearm' (forward pass)".
+std::string node_place(const Model<double>& model, int body, Pass pass) {
+  return fmt::format("{} ({})",
+                     body < 0 ? std::string("before the first link")
+                              : fmt::format("at link '{}'", model.body_name[body]),
+                     pass_name(pass));
+}
+
+/// The first value of r that overflows, in words: "a product at link 'l2' (forward pass)
+/// reaches 4.4e+40".
+template <class T>
+std::string overflow_words(const Program<T>& program, const Model<double>& model, const Range& r) {
+  const Node<T>& n = program.graph.nodes[r.overflow];
+  const char* what = n.op == Op::Mul      ? "a product"
+                     : n.op == Op::Div    ? "a quotient"
+                     : n.op == Op::Result ? "a kernel's result"
+                                          : "a sum";
+  return fmt::format("{} {} {}", what, node_place(model, n.body, n.pass),
+                     std::isfinite(r.overflow_value)
+                         ? fmt::format("reaches {:.2g}", r.overflow_value)
+                         : std::string("is not finite"));
+}
+
+/// What one algorithm's values reach at the sampled states (range.hpp), for the banner.
+struct AlgorithmRange {
+  Algorithm algorithm;
+  RangeEstimate estimate;
+  std::string extreme_overflow;  // the first overflow at extreme states in words, or ""
+};
+
+/// The range of an algorithm's values in T: throws InputError when they overflow at typical
+/// states, where the code's outputs would not be finite; warns when they do at extreme states
+/// only.
+template <class T>
+AlgorithmRange check_range(const Robot& robot, const Model<double>& model,
+                           const Program<T>& program, std::vector<std::string>& warnings) {
+  const char* scalar = std::is_same_v<T, float> ? "float" : "double";
+  const long double largest = std::numeric_limits<T>::max();
+  AlgorithmRange range{program.algorithm, estimate_range(program, model), ""};
+  const std::string advice = std::is_same_v<T, float> ? " (generate double: --scalar double)" : "";
+  if (range.estimate.typical.overflow >= 0)
+    throw InputError(fmt::format(
+        "{}: {} overflows in {} at typical states (|v| up to 10, |a| and |tau| up to 100, "
+        "docs/numerics.md): {}, beyond {}'s largest number {:.2g}, so that its outputs are "
+        "infinite, NaN or wrong; the robot's masses, lengths or inertias are too large or too "
+        "small for {}{}, or leave {} out (--algorithms)",
+        robot.path, program.algorithm, scalar,
+        overflow_words(program, model, range.estimate.typical), scalar, largest, scalar, advice,
+        program.algorithm));
+  if (range.estimate.extreme.overflow >= 0) {
+    range.extreme_overflow = overflow_words(program, model, range.estimate.extreme);
+    warnings.push_back(fmt::format(
+        "{} overflows in {} at extreme states (|v| up to 1e3, |a| and |tau| up to 1e4, "
+        "docs/numerics.md): {}, beyond {}'s largest number {:.2g}, so that its outputs are "
+        "infinite, NaN or wrong there{}",
+        program.algorithm, scalar, range.extreme_overflow, scalar, largest, advice));
+  }
+  return range;
+}
+
+/// The banner's lines on the range of the values: the largest at typical and at extreme states,
+/// and the algorithms that overflow at extreme states.
+std::string range_text(const std::vector<AlgorithmRange>& ranges, bool single_precision) {
+  const AlgorithmRange* typical = nullptr;
+  const AlgorithmRange* extreme = nullptr;
+  std::string overflows;
+  for (const AlgorithmRange& r : ranges) {
+    if (!typical || r.estimate.typical.largest > typical->estimate.typical.largest) typical = &r;
+    if (!extreme || r.estimate.extreme.largest > extreme->estimate.extreme.largest) extreme = &r;
+    if (!r.extreme_overflow.empty())
+      overflows += fmt::format("\n  {} overflows at extreme states, where it keeps no digit: {}",
+                               r.algorithm, r.extreme_overflow);
+  }
+  if (!typical) return "";
+  return fmt::format(
+      "\n  values reach {:.2g} ({}) at typical states and {:.2g} ({}) at extreme ones; {}'s "
+      "largest number is {:.2g}{}",
+      typical->estimate.typical.largest, typical->algorithm, extreme->estimate.extreme.largest,
+      extreme->algorithm, single_precision ? "float" : "double",
+      single_precision ? std::numeric_limits<float>::max() : std::numeric_limits<double>::max(),
+      overflows);
+}
+
 template <class T>
 Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   // frames only where a function computes something of them
@@ -420,7 +513,6 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   step("estimating the conditioning");
   result.conditioning =
       numerics::estimate_conditioning(model, options.conditioning_samples, 1, with_aba);
-  result.conditioning_text = conditioning_text(result.conditioning, with_aba);
   result.warnings =
       precision_warnings(result.conditioning, with_aba, std::is_same_v<T, float>);
   if (!std::is_same_v<T, float> && target_single_precision(options.target))
@@ -436,6 +528,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   std::string declarations, definitions, cases, batch_declarations, batch_definitions,
       python_functions;
   bool calls_kernels = false;
+  std::vector<AlgorithmRange> ranges;
   for (const Algorithm& a : options.algorithms) {
     step(fmt::format("tracing {} ({})", a, scalar));
     // the runtime's count first, so that its unsimplified trace is gone before the other's
@@ -453,14 +546,13 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     if (const int id = first_non_finite_constant(program); id >= 0) {
       const Node<T>& node = program.graph.nodes[id];
       throw InputError(fmt::format(
-          "{}: {} overflows in {}: it computes {} from the model's constants alone, {} ({}); the "
+          "{}: {} overflows in {}: it computes {} from the model's constants alone, {}; the "
           "robot's masses, lengths, inertias or gravity are too large or too small for {}{}",
-          robot.path, a, scalar, node.value,
-          node.body < 0 ? std::string("before the first link")
-                        : fmt::format("at link '{}'", model.body_name[node.body]),
-          pass_name(node.pass), scalar,
+          robot.path, a, scalar, node.value, node_place(model, node.body, node.pass), scalar,
           std::is_same_v<T, float> ? " (generate double: --scalar double)" : ""));
     }
+    step(fmt::format("estimating the range of {}'s values", a));
+    ranges.push_back(check_range(robot, model, program, result.warnings));
     const OpCounts generated = count_ops(program);
     calls_kernels = calls_kernels || !program.graph.calls.empty();
     const EmittedCode code = emit_code(program, model, options.structure, dialect);
@@ -550,6 +642,12 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   }
   if (!declarations.empty()) declarations.pop_back();
   if (!batch_declarations.empty()) batch_declarations.pop_back();
+  const bool aba_overflows = std::any_of(ranges.begin(), ranges.end(), [](const AlgorithmRange& r) {
+    return !r.extreme_overflow.empty() && algorithm_spec(r.algorithm).divides_by_pivots;
+  });
+  result.conditioning_text =
+      conditioning_text(result.conditioning, with_aba, aba_overflows ? scalar.c_str() : nullptr) +
+      range_text(ranges, single);
 
   std::string joint_names;
   const std::vector<std::string> names = velocity_names(model);
@@ -739,7 +837,8 @@ std::string snap_note(const Model<double>& model) {
       s.snapped, s.entries, suggested_snap, suggested_snap, s.largest_change);
 }
 
-std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
+std::string conditioning_text(const numerics::Conditioning& c, bool with_aba,
+                              const char* aba_overflows) {
   std::string text = fmt::format(
       "Conditioning over {} sampled states (docs/numerics.md):\n"
       "  cond(M) median {:.2g}, max {:.2g}{}: a relative change of tau or M can change qdd up to "
@@ -757,10 +856,13 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba) {
     const double lost = c.aba_digits_lost();
     text += fmt::format(
         "\n  smallest ABA pivot D/max|IA| {:.2g} (joint '{}'), articulated inertias span {:.2g}:\n"
-        "  ABA may lose {:.1f} digits, keeping about {:.1f} in double and {:.1f} in float",
+        "  ABA may lose {:.1f} digits, keeping about {:.1f} in double and {:.1f} in float{}",
         c.pivot_min, c.pivot_joint, c.inertia_range, lost,
         std::max(0.0, numerics::digits_of<double>() - lost),
-        std::max(0.0, numerics::digits_of<float>() - lost));
+        std::max(0.0, numerics::digits_of<float>() - lost),
+        aba_overflows ? fmt::format(" (none in {} at extreme states, where it overflows)",
+                                    aba_overflows)
+                      : std::string());
   }
   if (c.float_unrepresentable > 0)
     text += fmt::format("\n  {} model constants lie outside float's normal range",
@@ -783,6 +885,21 @@ Generated generate(const Robot& robot, const GenerateOptions& options) {
           "above dyngen's limit of {}: its code would take minutes and gigabytes to generate "
           "and be too large to compile. Leave it out (--algorithms).",
           robot.path, a, steps, max_crba_column_steps));
+    const long long frames = static_cast<long long>(robot.model.frames.size()),
+                    entries = frames * 6 * robot.model.nv;
+    if (spec.growth == Growth::FrameColumns && entries > max_frame_entries)
+      throw InputError(fmt::format(
+          "{}: {} for {} frames of {} degrees of freedom would fill {} entries (frames times 6 "
+          "nv), above dyngen's limit of {}: name fewer frames (--frames), or leave it out "
+          "(--algorithms).",
+          robot.path, a, frames, robot.model.nv, entries, max_frame_entries));
+    if (spec.growth == Growth::FrameColumns && frame_columns(robot.model) > max_frame_columns)
+      throw InputError(fmt::format(
+          "{}: {} for these {} frames would compute {} Jacobian columns (a degree of freedom "
+          "between a frame and the base each), above dyngen's limit of {}: its code would take "
+          "minutes and gigabytes to generate and be too large to compile. Name fewer frames "
+          "(--frames), or leave it out (--algorithms).",
+          robot.path, a, frames, frame_columns(robot.model), max_frame_columns));
     if (spec.growth == Growth::Dense && robot.model.nv > max_dense_nv)
       throw InputError(fmt::format(
           "{}: {} for {} degrees of freedom: its code grows with nv^2 times the depth and is "

@@ -49,6 +49,15 @@ struct GenerateOptions {
 /// such steps, a chain of 500 links, which takes about 20 s, 1 GB and writes 75 MB of code.
 inline constexpr long long max_crba_column_steps = 125000;
 
+/// frame_jacobians computes a Jacobian column per degree of freedom between each frame and the
+/// base: generation refuses it above this many such columns (500 frames along a 500-link chain;
+/// README, "Limits"), whose code grows as CRBA's does ...
+inline constexpr long long max_frame_columns = 125000;
+
+/// ... and above this many entries of its output (frames times 6 nv: 1000 frames of a 1000-joint
+/// star, 48 MB a call in double), which the trace, the check and every caller hold.
+inline constexpr long long max_frame_entries = 6000000;
+
 /// minv and aba_derivatives fill every entry of an nv x nv matrix with work that grows with the
 /// depth: generation refuses them above this many degrees of freedom (a 64-link chain's
 /// aba_derivatives is about 1.5 million operations).
@@ -89,8 +98,11 @@ inline constexpr double suggested_snap = 1e-9;
 std::string snap_note(const Model<double>& model);
 
 /// The conditioning estimate in words (the ABA lines only if with_aba), as the banner and
-/// dyngen report record it.
-std::string conditioning_text(const numerics::Conditioning& c, bool with_aba);
+/// dyngen report record it; aba_overflows names the scalar ("float") whose code of an algorithm
+/// that divides by ABA's pivots overflows at extreme states (range.hpp), which then keeps no
+/// digit there, or is null.
+std::string conditioning_text(const numerics::Conditioning& c, bool with_aba,
+                              const char* aba_overflows = nullptr);
 
 /// Whether an algorithm has an array per frame (frame_placements, frame_jacobians, ...): the
 /// algorithms that --frames is for.
@@ -98,8 +110,10 @@ bool uses_frames(const Algorithm& a);
 
 /// Traces, simplifies and prints every requested algorithm. Throws InputError when ABA is
 /// requested for a robot with a joint that moves no mass, CRBA for one above
-/// max_crba_column_steps, float code for constants beyond float's range, and when a number the
-/// trace computes from the model's constants alone overflows.
+/// max_crba_column_steps, frame Jacobians above max_frame_columns or max_frame_entries, float
+/// code for constants beyond float's range, when a number the trace computes from the model's
+/// constants alone overflows, and when an algorithm's values overflow at typical states
+/// (range.hpp); warns when they do at extreme states.
 Generated generate(const Robot& robot, const GenerateOptions& options);
 
 }  // namespace dyngen::gen

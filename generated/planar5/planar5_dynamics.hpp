@@ -19,6 +19,7 @@
 //   cond(M) median 6.7e+02, max 2.6e+03: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.025 (joint 'link1_joint'), articulated inertias span 81:
 //   ABA may lose 1.6 digits, keeping about 14.3 in double and 5.6 in float
+//   values reach 6.6e+03 (aba) at typical states and 2.4e+17 (aba) at extreme ones; double's largest number is 1.8e+308
 #pragma once
 
 /// Dynamics of robot 'planar5', specialised by dyngen.

@@ -67,6 +67,7 @@
 //   cond(M) median 1.7e+02, max 2.9e+02: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.026 (joint 'shoulder_pan_joint'), articulated inertias span 90:
 //   ABA may lose 1.6 digits, keeping about 14.4 in double and 5.6 in float
+//   values reach 5.3e+03 (aba_derivatives) at typical states and 5.8e+06 (rnea_derivatives) at extreme ones; double's largest number is 1.8e+308
 #pragma once
 
 #include <dyngen/model.hpp>

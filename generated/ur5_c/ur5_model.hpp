@@ -19,6 +19,7 @@
 //   cond(M) median 1.7e+02, max 2.9e+02: a relative change of tau or M can change qdd up to that many times
 //   smallest ABA pivot D/max|IA| 0.026 (joint 'shoulder_pan_joint'), articulated inertias span 90:
 //   ABA may lose 1.6 digits, keeping about 14.4 in double and 5.6 in float
+//   values reach 5e+03 (aba) at typical states and 3.9e+06 (rnea) at extreme ones; float's largest number is 3.4e+38
 #pragma once
 
 #include <dyngen/model.hpp>

@@ -202,9 +202,15 @@ const std::vector<Case> bad_options = {
     {"ConstantBeyondFloat", bad + "/huge_for_float.yaml", {"--scalar", "float"},
      {"huge_for_float.yaml: in float, link 'link1': the mass 1e+39 kg exceeds 3.40282e+38",
       "--scalar double"}},
-    {"FloatOverflowInTheTrace", bad + "/float_overflow.yaml", {"--scalar", "float"},
+    {"FloatOverflowInTheTrace", bad + "/float_overflow.yaml",
+     {"--scalar", "float", "--algorithms", "aba"},
      {"float_overflow.yaml: aba overflows in float: it computes inf from the model's constants",
       "at link 'link1' (acceleration pass)", "--scalar double"}},
+    // constants within float's range, products beyond it at the check's random states
+    {"FloatOverflowAtTypicalStates", bad + "/float_overflow_typical.yaml", {"--scalar", "float"},
+     {"float_overflow_typical.yaml: rnea overflows in float at typical states",
+      "a product at link 'l1' (forward pass) reaches", "beyond float's largest number 3.4e+38",
+      "--scalar double", "leave rnea out"}},
 };
 
 // Command-line mistakes are errors like bad input: `dyngen: error:` and exit status 1 (CLI11's
@@ -561,6 +567,72 @@ TEST_F(WarningsCommand, PrintedOnStderrEvenWhenQuietAndOutputWritten) {
     ++lines;
   EXPECT_EQ(lines, imperfect_warnings.size()) << r.err;
   EXPECT_TRUE(fs::is_regular_file(dir / "out" / "imperfect_dynamics.cpp"));
+}
+
+// ---- frame_jacobians' limits (README, "Limits")
+
+/// A chain spec of n unit links.
+std::string chain_of(int n) {
+  std::string text = "name: chain\nlinks:\n";
+  for (int i = 0; i < n; ++i) text += "  - {mass: 1, length: 0.1}\n";
+  return text;
+}
+
+/// The InputError of generating `algorithm` for the robot, or "(none)".
+std::string generation_error(const Robot& robot, const std::string& algorithm) {
+  GenerateOptions options;
+  options.name = "robot";
+  options.algorithms = {algorithm};
+  try {
+    generate(robot, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(none)";
+}
+
+// A star of 1001 links on one base, with the frames of its 1001 leaves: 6 x 1001 entries each,
+// 6,012,006 in all, above the limit of 6 million, refused before any tracing; nothing written.
+TEST_F(Scratch, FrameJacobiansRefusedAboveTheirEntries) {
+  std::string star = "<robot name=\"star\">\n  <link name=\"base\"/>\n";
+  for (int i = 1; i <= 1001; ++i) {
+    const std::string n = std::to_string(i);
+    star += "  <link name=\"l" + n +
+            "\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" "
+            "ixz=\"0\" iyz=\"0\"/></inertial></link>\n  <joint name=\"j" + n +
+            "\" type=\"continuous\"><parent link=\"base\"/><child link=\"l" + n +
+            "\"/><axis xyz=\"0 0 1\"/></joint>\n";
+  }
+  std::ofstream(dir / "star.urdf") << star << "</robot>\n";
+  const CliResult r = run_dyngen({(dir / "star.urdf").string(), "-o", (dir / "out").string(),
+                                  "--algorithms", "rnea,frame_jacobians"},
+                                 dir);
+  EXPECT_EQ(r.status, 1);
+  for (const char* part :
+       {"star.urdf: frame_jacobians for 1001 frames of 1001 degrees of freedom would fill "
+        "6012006 entries (frames times 6 nv), above dyngen's limit of 6000000",
+        "name fewer frames (--frames)"})
+    EXPECT_NE(r.err.find(part), std::string::npos) << part << " not in " << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// A frame on every link of a 500-link chain: 1 + 2 + ... + 500 = 125,250 Jacobian columns,
+// above the limit of 125,000, in either axes; the tip's frame alone on a chain of 600 (beyond
+// CRBA's limit, 179,700 steps) is 600 columns and generates.
+TEST(FrameLimits, FrameJacobiansRefusedAboveTheirColumns) {
+  LoadOptions every_frame;
+  every_frame.all_frames = true;
+  const Robot chain = parse_robot("chain.yaml", chain_of(500), every_frame);
+  for (const char* algorithm : {"frame_jacobians", "frame_jacobians_local"}) {
+    const std::string e = generation_error(chain, algorithm);
+    for (const std::string& part :
+         {std::string("chain.yaml: ") + algorithm, std::string("125250 Jacobian columns"),
+          std::string("above dyngen's limit of 125000"), std::string("--frames")})
+      EXPECT_NE(e.find(part), std::string::npos) << part << " not in " << e;
+  }
+  EXPECT_EQ(generation_error(parse_robot("chain.yaml", chain_of(600), {}), "frame_jacobians"),
+            "(none)");
+  EXPECT_NE(generation_error(parse_robot("chain.yaml", chain_of(600), {}), "crba"), "(none)");
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "files.hpp"
 #include "generate.hpp"
+#include "range.hpp"
 
 namespace {
 
@@ -132,6 +133,115 @@ TEST_F(ConditioningCli, RefusesFloatAbaWhereTheFloatModelMovesNoInertia) {
   const CliResult without_aba = run_dyngen(
       {spec, "-o", (dir / "r").string(), "--scalar", "float", "--algorithms", "rnea,crba"}, dir);
   EXPECT_EQ(without_aba.status, 0) << without_aba.err;
+}
+
+// ---- the range of the traced values (range.hpp)
+
+/// A program of one output, built by hand on ur5's inputs: make(graph) returns the stored node.
+template <class Make>
+Program<double> program_of(const Make& make) {
+  Program<double> program;
+  program.algorithm = "rnea";
+  program.stored.push_back(make(program.graph));
+  return program;
+}
+
+// v[0] * 1e306 stays below double's 1.8e308 while |v| <= 10 (typical states) and overflows once
+// |v| > 180 (the extreme states' |v| reach 1e3); the estimate names that node, and what it would
+// be without double's range, at most 1e3 * 1e306.
+TEST(Range, FindsTheFirstValueBeyondTheScalarsRange) {
+  const Model<double> model = load_robot(models + "/ur5.urdf").model;
+  int product = -1;
+  const Program<double> program = program_of([&](Graph<double>& g) {
+    product = g.binary(Op::Mul, g.input("v", 0), g.constant(1e306));
+    return g.binary(Op::Add, product, g.input("q", 1));
+  });
+  const RangeEstimate r = estimate_range(program, model);
+  EXPECT_EQ(r.typical.overflow, -1);
+  EXPECT_GT(r.typical.largest, 1e306L);
+  EXPECT_LE(r.typical.largest, 1e307L + 4);
+  EXPECT_EQ(r.extreme.overflow, product) << "the sum that reads it overflows after it";
+  EXPECT_GT(r.extreme.overflow_value, static_cast<long double>(std::numeric_limits<double>::max()));
+  EXPECT_LE(r.extreme.overflow_value, 1e309L);
+  EXPECT_LE(r.extreme.largest, static_cast<long double>(std::numeric_limits<double>::max()));
+}
+
+// A division by zero is not finite at every state, and has no value to report.
+TEST(Range, ADivisionByZeroOverflowsEverywhere) {
+  const Model<double> model = load_robot(models + "/ur5.urdf").model;
+  const Program<double> program = program_of([](Graph<double>& g) {
+    return g.binary(Op::Div, g.input("tau", 2), g.constant(0.0));
+  });
+  const RangeEstimate r = estimate_range(program, model);
+  EXPECT_EQ(r.typical.overflow, 2) << "node 2, after tau[2] and the constant";
+  EXPECT_FALSE(std::isfinite(r.typical.overflow_value));
+  EXPECT_EQ(r.extreme.overflow, r.typical.overflow);
+}
+
+/// The l1-l2 chain of tests/generator/bad/float_overflow_typical.yaml, 1e4 times lighter: float
+/// holds its values at typical states (up to 4e36), and RNEA's and ABA's products overflow it at
+/// extreme ones (|v| to 1e3, tau to 1e4).
+const char* heavy_and_long = R"(name: heavy
+links:
+  - name: l1
+    mass: 1e8
+    length: 1e13
+    com: [1e13, 0, 0]
+    inertia: {ixx: 1e15, iyy: 1e15, izz: 1e15}
+  - name: l2
+    mass: 1e8
+    length: 1e13
+    com: [1e13, 0, 0]
+    inertia: {ixx: 1e15, iyy: 1e15, izz: 1e15}
+)";
+
+TEST_F(ConditioningCli, WarnsWhereFloatOverflowsAtExtremeStatesOnly) {
+  const std::string spec = (dir / "heavy.yaml").string();
+  std::ofstream(spec) << heavy_and_long;
+  const Generated g = generate_for(load_robot(spec), true);
+  std::string warnings;
+  for (const std::string& w : g.warnings) warnings += w + "\n";
+  for (const char* part :
+       {"rnea overflows in float at extreme states", "aba overflows in float at extreme states",
+        "at link 'l2' (forward pass) reaches", "beyond float's largest number 3.4e+38",
+        "--scalar double"})
+    EXPECT_NE(warnings.find(part), std::string::npos) << part << " not in " << warnings;
+  EXPECT_EQ(warnings.find("crba"), std::string::npos) << "M is q's alone: " << warnings;
+  const std::string& header = g.files.front().text;
+  for (const char* part :
+       {"keeping about 15.3 in double and 6.5 in float (none in float at extreme states, where "
+        "it overflows)",
+        "//   rnea overflows at extreme states, where it keeps no digit: a product at link 'l2'"})
+    EXPECT_NE(header.find(part), std::string::npos) << part;
+  EXPECT_TRUE(generate_for(load_robot(spec), false).warnings.empty()) << "double holds them";
+}
+
+// No false alarm: the shared robots and the stiff ones keep their values within float's range
+// by more than 17 orders of magnitude (docs/numerics.md, "Range"); atlas's derivatives call
+// kernels, which the estimate runs on numbers.
+TEST(Range, NoWarningForTheSharedAndStiffRobotsInFloat) {
+  LoadOptions floating;
+  floating.floating_base = true;
+  const std::vector<std::string> dynamics = {"rnea", "crba", "aba", "minv", "centroidal"};
+  const std::vector<std::tuple<std::string, LoadOptions, std::vector<std::string>>> robots = {
+      {"ur5.urdf", {}, dynamics},
+      {"atlas.urdf", floating, {"rnea", "aba", "rnea_derivatives", "aba_derivatives"}},
+      {"stiff/light_limbs.urdf", floating, dynamics},
+      {"stiff/thin_rods12.yaml", {}, dynamics},
+      {"stiff/tapered50_0p9.yaml", {}, dynamics}};
+  for (const auto& [file, load, algorithms] : robots) {
+    GenerateOptions options;
+    options.name = "robot";
+    options.single_precision = true;
+    options.algorithms = algorithms;
+    const Generated g = generate(load_robot(models + "/" + file, load), options);
+    for (const std::string& w : g.warnings) EXPECT_EQ(w.find("overflow"), std::string::npos) << w;
+    EXPECT_NE(g.conditioning_text.find("float's largest number is 3.4e+38"), std::string::npos)
+        << file;
+    if (file == "atlas.urdf") {
+      EXPECT_NE(g.files[1].text.find("dyngen::kernels::"), std::string::npos) << g.files[1].name;
+    }
+  }
 }
 
 }  // namespace

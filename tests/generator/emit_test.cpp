@@ -17,8 +17,10 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "dyngen/frames.hpp"
 #include "emit.hpp"
 #include "generate.hpp"
 #include "robot.hpp"
@@ -691,6 +693,140 @@ TEST(FrameSelection, OutputsNameTheFrameOfEachBlock) {
   EXPECT_NE(tool0, std::string::npos);
   EXPECT_NE(ee_link, std::string::npos);
   EXPECT_LT(tool0, ee_link);
+}
+
+// ---- exact zeros of the outputs: a loop, not a store each
+
+/// What the outputs section of a generated file's function `function` leaves in its array
+/// `array` of `size` entries (of each state in batch code): per entry, how many statements write
+/// it (loops and stores; the loop over a whole array that stores then overwrite counts for
+/// nothing where they do) and whether it ends 0; and the most stores of 0 in a row.
+struct OutputWrites {
+  std::vector<int> writes;
+  std::vector<bool> zero;
+  int zero_stores_in_a_row = 0;
+};
+
+OutputWrites output_writes(const std::string& source, const std::string& function,
+                           const std::string& array, std::size_t size) {
+  OutputWrites w{std::vector<int>(size, 0), std::vector<bool>(size, false)};
+  const std::string lanes = R"((?: \* lanes)?)";
+  const std::regex loop(R"(    for \(int k = (\d+))" + lanes + R"(; k < (\d+))" + lanes +
+                        R"(; \+\+k\) )" + array + R"(\[k\] = 0\.0f?;.*)");
+  const std::regex store("    (?:" + array + R"(\[(\d+)\] = (.+)|store\()" + array +
+                         R"( \+ (\d+) \* lanes, (.+)\));)");
+  std::vector<int> loops(size, 0), stores(size, 0);
+  bool inside = false, outputs = false, filled = false;
+  int row = 0;
+  for (const std::string& line : lines_of(source)) {
+    inside = inside || line.starts_with("void " + function + "(");
+    if (!inside) continue;
+    if (line == "}") break;
+    outputs = outputs || line == "    // ---- outputs";
+    std::smatch m;
+    if (!outputs) continue;
+    if (std::regex_match(line, m, loop)) {
+      const std::size_t begin = std::stoul(m[1]);
+      const std::size_t end = std::min<std::size_t>(std::stoul(m[2]), size);
+      filled = filled || (begin == 0 && end == size);
+      for (std::size_t k = begin; k < end; ++k) ++loops[k], w.zero[k] = true;
+      row = 0;
+    } else if (std::regex_match(line, m, store)) {
+      const std::size_t k = std::stoul(m[1].matched ? m[1].str() : m[3].str());
+      const std::string value = m[2].matched ? m[2].str() : m[4].str();
+      if (k >= size) continue;
+      ++stores[k];
+      w.zero[k] = value == "0.0" || value == "0.0f";
+      row = w.zero[k] ? row + 1 : 0;
+      w.zero_stores_in_a_row = std::max(w.zero_stores_in_a_row, row);
+    }
+  }
+  for (std::size_t k = 0; k < size; ++k)
+    w.writes[k] = loops[k] + stores[k] - (filled && stores[k] > 0 ? 1 : 0);
+  return w;
+}
+
+// Every entry of the frames' Jacobians is written, once (or by the fill and then its own store),
+// the entries left 0 are 0 in the runtime's Jacobian at a random state, and no run of zeros is
+// stored one entry at a time: in C++, C and batch code, for ur5's default frames (ee_link, tool0
+// and base, whose block, J[72] to J[107], is all zero: a run in an array of fewer zeros than
+// not), solo12 floating with every frame and a star of 12 links on one base (arrays mostly zero,
+// filled by one loop: a star's frame has its own joint's column only).
+TEST(OutputZeros, EveryEntryWrittenAndTheZerosByLoops) {
+  std::string star = "<robot name=\"star\">\n  <link name=\"base\"/>\n";
+  for (int i = 1; i <= 12; ++i)
+    star += fmt::format(
+        "  <link name=\"l{0}\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" "
+        "izz=\"1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
+        "  <joint name=\"j{0}\" type=\"continuous\"><parent link=\"base\"/><child link=\"l{0}\"/>"
+        "<origin xyz=\"0.1 0 0\" rpy=\"0 0 {0}\"/><axis xyz=\"0 1 0\"/></joint>\n",
+        i);
+  star += "</robot>\n";
+  LoadOptions every_frame;
+  every_frame.all_frames = true;
+  LoadOptions floating = floating_base();
+  floating.all_frames = true;
+  const std::string models = DYNGEN_TEST_MODELS;
+  const Robot robots[] = {load_robot(models + "/ur5.urdf"),
+                          load_robot(models + "/solo12.urdf", floating),
+                          parse_robot("star.urdf", star, {})};
+  for (const Robot& robot : robots) {
+    const Model<double>& model = robot.model;
+    std::mt19937_64 rng(40);
+    std::vector<double> q(model.nq);
+    for (double& x : q) x = static_cast<double>(rng() >> 11) * 0x1.0p-53 * 6 - 3;
+    for (int i = 0; i < model.nbodies; ++i)
+      if (model.joint_type[i] == JointType::Free) std::fill_n(&q[model.q_index[i] + 3], 4, 0.5);
+    const std::size_t size = model.frames.size() * 6 * model.nv;
+    std::vector<double> J(size);
+    Workspace<double> ws(model);
+    frame_jacobians<double>(model, ws, q, JacobianAxes::World, J);
+    for (const auto& [language, batch] : {std::pair{Language::Cpp, 0}, std::pair{Language::C, 0},
+                                          std::pair{Language::Cpp, 2}}) {
+      GenerateOptions options;
+      options.name = "robot";
+      options.language = language;
+      options.batch = batch;
+      options.algorithms = {"frame_jacobians"};
+      for (const GeneratedFile& f : generate(robot, options).files) {
+        const bool c = f.name == "robot_dynamics.c", cpp = f.name == "robot_dynamics.cpp";
+        if (!c && !cpp && f.name != "robot_batch.cpp") continue;
+        const std::string function = c ? "robot_frame_jacobians_trig"
+                                     : cpp ? "frame_jacobians_trig"
+                                           : "frame_jacobians_batch_trig";
+        const std::string where = robot.name + " " + f.name;
+        const OutputWrites w = output_writes(f.text, function, "J", size);
+        for (std::size_t k = 0; k < size; ++k) {
+          EXPECT_EQ(w.writes[k], 1) << where << ": J[" << k << "]";
+          if (w.zero[k]) {
+            EXPECT_EQ(J[k], 0.0) << where << ": J[" << k << "]";
+          }
+        }
+        EXPECT_LT(w.zero_stores_in_a_row, 8) << where;
+        const std::string base_block = c || cpp ? "for (int k = 72; k < 108; ++k) J[k] = 0.0;"
+                                                : "for (int k = 72 * lanes; k < 108 * lanes; "
+                                                  "++k) J[k] = 0.0;";
+        if (robot.name == "ur5") {
+          EXPECT_NE(f.text.find(base_block), std::string::npos) << where;
+        }
+      }
+    }
+    if (robot.name != "star") continue;
+    // every frame's Jacobian has 11 zero columns of 6: one loop fills the 864 entries, then each
+    // frame's own column is stored, 6 entries at most
+    GenerateOptions options;
+    options.name = "star";
+    options.algorithms = {"frame_jacobians"};
+    for (const GeneratedFile& f : generate(robot, options).files) {
+      if (f.name != "star_dynamics.cpp") continue;
+      EXPECT_NE(f.text.find("    for (int k = 0; k < 864; ++k) J[k] = 0.0;  // "),
+                std::string::npos);
+      const std::regex store(R"(\n    J\[\d+\] = )");
+      const std::ptrdiff_t stores = std::distance(
+          std::sregex_iterator(f.text.begin(), f.text.end(), store), std::sregex_iterator());
+      EXPECT_LE(stores, 12 * 6);
+    }
+  }
 }
 
 }  // namespace

@@ -113,9 +113,10 @@ template <class S>
 using AlgorithmOutputs = std::span<const std::span<S>>;
 
 /// How an algorithm's work grows with the robot: linearly in the bodies; with the sum over
-/// joints of nv times depth (carrying columns up the tree); or with nv^2 times the depth
-/// (filling a dense nv x nv matrix).
-enum class Growth { Linear, ColumnSteps, Dense };
+/// joints of nv times depth (carrying columns up the tree); with nv^2 times the depth
+/// (filling a dense nv x nv matrix); or with the frames' Jacobian columns, a column per degree
+/// of freedom between each frame and the base, in an output of 6 nv entries per frame.
+enum class Growth { Linear, ColumnSteps, Dense, FrameColumns };
 
 /// One algorithm: call(model, ws, inputs, outputs) with the arrays in the order listed, each of
 /// its extent's length. Every algorithm reads q first.
@@ -189,13 +190,13 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        }},
       {"frame_jacobians", "Jacobians of the frames, in base axes at each frame's origin.",
        {q_array}, {J_array},
-       Growth::ColumnSteps, false,
+       Growth::FrameColumns, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          frame_jacobians<S>(m, ws, in[0], JacobianAxes::World, out[0]);
        }},
       {"frame_jacobians_local", "Jacobians of the frames, in each frame's own axes.",
        {q_array}, {J_local_array},
-       Growth::ColumnSteps, false,
+       Growth::FrameColumns, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          frame_jacobians<S>(m, ws, in[0], JacobianAxes::Local, out[0]);
        }},
