@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "dyngen/numerics/conditioning.hpp"
+
 #include "footprint.hpp"
 #include "names.hpp"
 #include "range.hpp"

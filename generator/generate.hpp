@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "dyngen/numerics/conditioning.hpp"
+#include "dyngen/numerics/conditioning_estimate.hpp"
 #include "emit.hpp"
 #include "footprint.hpp"
 #include "names.hpp"

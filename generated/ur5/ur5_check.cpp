@@ -71,20 +71,11 @@
 // Checks every generated function against the dyngen runtime bit for bit (+0 and -0 count as
 // equal) on 10000 seeded random states and 2000 extreme ones (angles up
 // to 1e6 rad, speeds up to 1e3 rad/s). On failure it prints the first differing output.
-#include <algorithm>
 #include <cfloat>
-#include <cmath>
-#include <cstdio>
-#include <cstdint>
-#include <cstring>
-#include <random>
-#include <span>
-#include <string>
-#include <string_view>
-#include <vector>
 
 #include <gtest/gtest.h>
 
+#include <dyngen/check.hpp>
 #include <dyngen/dyngen.hpp>
 
 #include "ur5_dynamics.hpp"
@@ -95,331 +86,197 @@ static_assert(FLT_EVAL_METHOD == 0, "excess precision would break bit equality")
 
 // The check's own names live in dyngen_check, a name that dyngen gives no robot (none starts
 // with dyngen), and it reaches the package's from the global namespace (::ur5::rnea): whatever
-// the robot is called, neither hides the other.
+// the robot is called, neither hides the other. The comparison itself is the runtime's
+// (dyngen/check.hpp), the same for every package.
 namespace dyngen_check {
 
 using Scalar = double;
-constexpr int random_states = 10000;
-constexpr int extreme_states = 2000;
-constexpr int all_states = random_states + extreme_states;
-
-using Arrays = std::vector<std::vector<Scalar>>;
-using Spec = dyngen::AlgorithmSpec<Scalar>;
+using Arrays = dyngen::check::Arrays<Scalar>;
+constexpr dyngen::check::States states{10000, 2000};
 
 const dyngen::Model<Scalar> model = ::ur5::runtime_model().cast<Scalar>();
 
-/// Doubles from raw mt19937_64 bits: the same on every standard library.
-double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
-
-Arrays sized(const std::vector<dyngen::ArraySpec>& arrays) {
-  Arrays x;
-  for (const dyngen::ArraySpec& a : arrays)
-    x.emplace_back(dyngen::extent_size(a.extent, model));
-  return x;
-}
-
-/// The inputs of `spec` for state number s: q, v and the other arrays (a, tau) random within
-/// their ranges.
-Arrays make_inputs(const Spec& spec, int s) {
-  std::mt19937_64 rng(0x64796e67656e + static_cast<std::uint64_t>(s));
-  const bool extreme = s >= random_states;
-  // extreme states: angles from 10 to 1e6 rad, speeds up to 1e3, forces up to 1e4
-  const double q_range = extreme ? std::pow(10.0, 1 + (s % 6)) : 3.2;
-  const double v_range = extreme ? 1e3 : 10.0;
-  const double x_range = extreme ? 1e4 : 100.0;
-  Arrays x = sized(spec.inputs);
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    const std::string_view name = spec.inputs[k].name;
-    const double range = name == "q" ? q_range : name == "v" ? v_range : x_range;
-    for (Scalar& e : x[k]) e = static_cast<Scalar>(uniform(rng, -range, range));
-    if (name != "q") continue;
-    // a free joint's quaternion is a unit one, as the algorithms assume: a huge one would
-    // overflow, and the contract holds for computations that stay finite
-    for (int i = 0; i < model.nbodies; ++i) {
-      if (model.joint_type[i] != dyngen::JointType::Free) continue;
-      Scalar* w = &x[k][model.q_index[i] + 3];
-      const double w0 = uniform(rng, -1, 1), w1 = uniform(rng, -1, 1), w2 = uniform(rng, -1, 1),
-                   w3 = uniform(rng, -1, 1);
-      const double norm = std::sqrt(w0 * w0 + w1 * w1 + w2 * w2 + w3 * w3);
-      w[0] = static_cast<Scalar>(w0 / norm), w[1] = static_cast<Scalar>(w1 / norm);
-      w[2] = static_cast<Scalar>(w2 / norm), w[3] = static_cast<Scalar>(w3 / norm);
-    }
-  }
-  return x;
-}
-
-std::string show(Scalar x) {
-  char text[80];
-  std::snprintf(text, sizeof text, "%.17g (%a)", static_cast<double>(x), static_cast<double>(x));
-  return text;
-}
-
-std::string show(const std::vector<Scalar>& xs) {
-  std::string s;
-  for (const Scalar x : xs) s += (s.empty() ? "" : ", ") + show(x);
-  return "[" + s + "]";
-}
-
-bool same_bits(Scalar a, Scalar b) {
-  if (a == 0 && b == 0) return true;  // +0 and -0 may differ (docs/design.md)
-  return std::memcmp(&a, &b, sizeof(Scalar)) == 0;
-}
-
-/// The first entry where the generated code and the runtime differ, with the inputs.
-::testing::AssertionResult same_outputs(const Spec& spec, std::size_t output, int s,
-                                        const Arrays& x, const std::vector<Scalar>& generated,
-                                        const std::vector<Scalar>& runtime) {
-  for (std::size_t k = 0; k < generated.size(); ++k) {
-    // equal NaNs would pass as equal bits, but prove nothing: the states are finite and so must
-    // be the outputs
-    if (same_bits(generated[k], runtime[k]) && std::isfinite(generated[k]) &&
-        std::isfinite(runtime[k]))
-      continue;
-    ::testing::AssertionResult failure = ::testing::AssertionFailure();
-    failure << spec.name << ": " << spec.outputs[output].name << "[" << k
-            << "] differs or is not finite at state " << s
-            << (s >= random_states ? " (extreme)" : " (random)") << "\n  generated "
-            << show(generated[k]) << "\n  runtime   " << show(runtime[k]);
-    for (std::size_t i = 0; i < x.size(); ++i)
-      failure << "\n  " << spec.inputs[i].name << " = " << show(x[i]);
-    return failure;
-  }
-  return ::testing::AssertionSuccess();
-}
-
-/// Runs the runtime's `name` and the generated one on every state and compares their outputs.
-template <class Generated>
-void check_bit_for_bit(const char* name, Generated generated) {
-  const Spec* spec = dyngen::find_algorithm<Scalar>(name);
-  ASSERT_NE(spec, nullptr) << "the runtime has no algorithm " << name;
-  dyngen::Workspace<Scalar> ws(model);
-  Arrays runtime = sized(spec->outputs), mine = sized(spec->outputs);
-  for (int s = 0; s < all_states; ++s) {
-    const Arrays x = make_inputs(*spec, s);
-    const std::vector<std::span<const Scalar>> in(x.begin(), x.end());
-    const std::vector<std::span<Scalar>> out(runtime.begin(), runtime.end());
-    spec->call(model, ws, in, out);
-    generated(x, mine);
-    for (std::size_t k = 0; k < runtime.size(); ++k)
-      ASSERT_TRUE(same_outputs(*spec, k, s, x, mine[k], runtime[k]));
-  }
-}
-
-/// Runs the runtime's `name` on every state and compares it with each lane of the batch function
-/// (`lanes` states a call, entry i of state l at [i * lanes + l]), and, on 2 lanes + 1 states,
-/// with the function over many states (one after the other; the last batch is a partial one).
-template <int lanes, class Batch, class Many>
-void check_batch(const char* name, Batch batch, Many many) {
-  const Spec* spec = dyngen::find_algorithm<Scalar>(name);
-  ASSERT_NE(spec, nullptr) << "the runtime has no algorithm " << name;
-  dyngen::Workspace<Scalar> ws(model);
-  Arrays runtime = sized(spec->outputs), mine = sized(spec->outputs);
-  auto run_runtime = [&](const Arrays& x) {
-    const std::vector<std::span<const Scalar>> in(x.begin(), x.end());
-    const std::vector<std::span<Scalar>> out(runtime.begin(), runtime.end());
-    spec->call(model, ws, in, out);
-  };
-  auto times = [](Arrays arrays, std::size_t n) {
-    for (std::vector<Scalar>& a : arrays) a.resize(a.size() * n);
-    return arrays;
-  };
-  Arrays x_lanes = times(sized(spec->inputs), lanes), y_lanes = times(sized(spec->outputs), lanes);
-  for (int first = 0; first < all_states; first += lanes) {
-    std::vector<Arrays> states;
-    for (int l = 0; l < lanes; ++l) {
-      states.push_back(make_inputs(*spec, (first + l) % all_states));
-      for (std::size_t k = 0; k < x_lanes.size(); ++k)
-        for (std::size_t i = 0; i < states[l][k].size(); ++i)
-          x_lanes[k][i * lanes + l] = states[l][k][i];
-    }
-    batch(x_lanes, y_lanes);
-    for (int l = 0; l < lanes; ++l) {
-      run_runtime(states[l]);
-      for (std::size_t k = 0; k < mine.size(); ++k) {
-        for (std::size_t i = 0; i < mine[k].size(); ++i) mine[k][i] = y_lanes[k][i * lanes + l];
-        ASSERT_TRUE(same_outputs(*spec, k, (first + l) % all_states, states[l], mine[k],
-                                 runtime[k]))
-            << "in lane " << l << " of " << lanes;
-      }
-    }
-  }
-  const int count = 2 * lanes + 1;
-  Arrays x_rows = times(sized(spec->inputs), count), y_rows = times(sized(spec->outputs), count);
-  std::vector<Arrays> states;
-  for (int s = 0; s < count; ++s) {
-    states.push_back(make_inputs(*spec, s));
-    for (std::size_t k = 0; k < x_rows.size(); ++k)
-      std::copy(states[s][k].begin(), states[s][k].end(),
-                x_rows[k].begin() + static_cast<std::ptrdiff_t>(s * states[s][k].size()));
-  }
-  many(count, x_rows, y_rows);
-  for (int s = 0; s < count; ++s) {
-    run_runtime(states[s]);
-    for (std::size_t k = 0; k < mine.size(); ++k) {
-      std::copy_n(y_rows[k].begin() + static_cast<std::ptrdiff_t>(s * mine[k].size()),
-                  mine[k].size(), mine[k].begin());
-      ASSERT_TRUE(same_outputs(*spec, k, s, states[s], mine[k], runtime[k]))
-          << "in the function over " << count << " states";
-    }
-  }
-}
-
 TEST(ur5, model_tables_match_generated_header) {
-  ASSERT_EQ(model.nq, ::ur5::nq);
-  ASSERT_EQ(model.nv, ::ur5::nv);
-  const std::vector<std::string> names = dyngen::velocity_names(model);
-  for (int k = 0; k < model.nv; ++k) EXPECT_EQ(names[k], ::ur5::joint_names[k]);
+  dyngen::check::model_matches(model, ::ur5::nq, ::ur5::nv, ::ur5::joint_names);
 }
 
 TEST(ur5, rnea_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("rnea", [](const Arrays& x, Arrays& y) { ::ur5::rnea(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "rnea",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::rnea(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 
 TEST(ur5, rnea_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "rnea", [](const Arrays& x, Arrays& y) { ::ur5::rnea_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "rnea",
+      [](const Arrays& x, Arrays& y) { ::ur5::rnea_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::rnea_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 
 TEST(ur5, crba_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("crba", [](const Arrays& x, Arrays& y) { ::ur5::crba(x[0].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "crba",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::crba(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, crba_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "crba", [](const Arrays& x, Arrays& y) { ::ur5::crba_batch(x[0].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "crba",
+      [](const Arrays& x, Arrays& y) { ::ur5::crba_batch(x[0].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::crba_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, aba_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("aba", [](const Arrays& x, Arrays& y) { ::ur5::aba(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "aba",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::aba(x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 
 TEST(ur5, aba_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "aba", [](const Arrays& x, Arrays& y) { ::ur5::aba_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "aba",
+      [](const Arrays& x, Arrays& y) { ::ur5::aba_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::aba_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data()); });
 }
 
 TEST(ur5, gravity_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("gravity", [](const Arrays& x, Arrays& y) { ::ur5::gravity(x[0].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "gravity",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::gravity(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, gravity_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "gravity", [](const Arrays& x, Arrays& y) { ::ur5::gravity_batch(x[0].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "gravity",
+      [](const Arrays& x, Arrays& y) { ::ur5::gravity_batch(x[0].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::gravity_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, nle_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("nle", [](const Arrays& x, Arrays& y) { ::ur5::nle(x[0].data(), x[1].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "nle",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::nle(x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, nle_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "nle", [](const Arrays& x, Arrays& y) { ::ur5::nle_batch(x[0].data(), x[1].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "nle",
+      [](const Arrays& x, Arrays& y) { ::ur5::nle_batch(x[0].data(), x[1].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::nle_many(count, x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, minv_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("minv", [](const Arrays& x, Arrays& y) { ::ur5::minv(x[0].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "minv",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::minv(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, minv_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "minv", [](const Arrays& x, Arrays& y) { ::ur5::minv_batch(x[0].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "minv",
+      [](const Arrays& x, Arrays& y) { ::ur5::minv_batch(x[0].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::minv_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, rnea_derivatives_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("rnea_derivatives", [](const Arrays& x, Arrays& y) { ::ur5::rnea_derivatives(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "rnea_derivatives",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::rnea_derivatives(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, rnea_derivatives_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "rnea_derivatives", [](const Arrays& x, Arrays& y) { ::ur5::rnea_derivatives_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "rnea_derivatives",
+      [](const Arrays& x, Arrays& y) { ::ur5::rnea_derivatives_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::rnea_derivatives_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, aba_derivatives_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("aba_derivatives", [](const Arrays& x, Arrays& y) { ::ur5::aba_derivatives(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "aba_derivatives",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::aba_derivatives(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); });
 }
 
 TEST(ur5, aba_derivatives_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "aba_derivatives", [](const Arrays& x, Arrays& y) { ::ur5::aba_derivatives_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "aba_derivatives",
+      [](const Arrays& x, Arrays& y) { ::ur5::aba_derivatives_batch(x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::aba_derivatives_many(count, x[0].data(), x[1].data(), x[2].data(), y[0].data(), y[1].data(), y[2].data()); });
 }
 
 TEST(ur5, frame_placements_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_placements", [](const Arrays& x, Arrays& y) { ::ur5::frame_placements(x[0].data(), y[0].data(), y[1].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "frame_placements",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::frame_placements(x[0].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, frame_placements_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "frame_placements", [](const Arrays& x, Arrays& y) { ::ur5::frame_placements_batch(x[0].data(), y[0].data(), y[1].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "frame_placements",
+      [](const Arrays& x, Arrays& y) { ::ur5::frame_placements_batch(x[0].data(), y[0].data(), y[1].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_placements_many(count, x[0].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, frame_jacobians_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_jacobians", [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians(x[0].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "frame_jacobians",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_jacobians_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "frame_jacobians", [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_batch(x[0].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "frame_jacobians",
+      [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_batch(x[0].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_jacobians_local_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_jacobians_local", [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_local(x[0].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "frame_jacobians_local",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_local(x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_jacobians_local_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "frame_jacobians_local", [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_local_batch(x[0].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "frame_jacobians_local",
+      [](const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_local_batch(x[0].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_jacobians_local_many(count, x[0].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_accelerations_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_accelerations", [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations(x[0].data(), x[1].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "frame_accelerations",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations(x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_accelerations_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "frame_accelerations", [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_batch(x[0].data(), x[1].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "frame_accelerations",
+      [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_batch(x[0].data(), x[1].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_many(count, x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_accelerations_local_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("frame_accelerations_local", [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_local(x[0].data(), x[1].data(), y[0].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "frame_accelerations_local",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_local(x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, frame_accelerations_local_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "frame_accelerations_local", [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_local_batch(x[0].data(), x[1].data(), y[0].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "frame_accelerations_local",
+      [](const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_local_batch(x[0].data(), x[1].data(), y[0].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::frame_accelerations_local_many(count, x[0].data(), x[1].data(), y[0].data()); });
 }
 
 TEST(ur5, com_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("com", [](const Arrays& x, Arrays& y) { ::ur5::com(x[0].data(), y[0].data(), y[1].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "com",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::com(x[0].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, com_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "com", [](const Arrays& x, Arrays& y) { ::ur5::com_batch(x[0].data(), y[0].data(), y[1].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "com",
+      [](const Arrays& x, Arrays& y) { ::ur5::com_batch(x[0].data(), y[0].data(), y[1].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::com_many(count, x[0].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, centroidal_matches_runtime_bit_for_bit) {
-  check_bit_for_bit("centroidal", [](const Arrays& x, Arrays& y) { ::ur5::centroidal(x[0].data(), x[1].data(), y[0].data(), y[1].data()); });
+  dyngen::check::bit_for_bit<Scalar>(model, states, "centroidal",
+                                     [](const Arrays& x, Arrays& y) { ::ur5::centroidal(x[0].data(), x[1].data(), y[0].data(), y[1].data()); });
 }
 
 TEST(ur5, centroidal_batch_matches_runtime_bit_for_bit_in_every_lane) {
-  check_batch<::ur5::lanes>(
-      "centroidal", [](const Arrays& x, Arrays& y) { ::ur5::centroidal_batch(x[0].data(), x[1].data(), y[0].data(), y[1].data()); },
+  dyngen::check::batch_bit_for_bit<Scalar>(
+      model, states, ::ur5::lanes, "centroidal",
+      [](const Arrays& x, Arrays& y) { ::ur5::centroidal_batch(x[0].data(), x[1].data(), y[0].data(), y[1].data()); },
       [](long count, const Arrays& x, Arrays& y) { ::ur5::centroidal_many(count, x[0].data(), x[1].data(), y[0].data(), y[1].data()); });
 }
 
