@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <span>
 #include <string>
@@ -133,6 +134,14 @@ testing::AssertionResult same_outputs(const AlgorithmSpec<S>& spec, std::size_t 
   return testing::AssertionSuccess();
 }
 
+/// Fills every array with NaN, so that an output the function under test leaves unwritten fails
+/// the comparison (a missed store of a zero would otherwise keep the zero put there before).
+template <class S>
+void poison(Arrays<S>& arrays) {
+  for (std::vector<S>& a : arrays)
+    std::fill(a.begin(), a.end(), std::numeric_limits<S>::quiet_NaN());
+}
+
 /// The runtime's algorithm `name` for `model`, called on arrays.
 template <class S>
 class Runtime {
@@ -162,6 +171,7 @@ void bit_for_bit(const Model<S>& model, States states, const char* name, Functio
   for (int s = 0; s < states.all(); ++s) {
     const Arrays<S> x = make_inputs(model, spec, states, s);
     runtime(x, expected);
+    poison(mine);
     generated(x, mine);
     for (std::size_t k = 0; k < expected.size(); ++k)
       ASSERT_TRUE(same_outputs(spec, k, states, s, x, mine[k], expected[k]));
@@ -187,6 +197,7 @@ void batch_bit_for_bit(const Model<S>& model, States states, int lanes, const ch
       for (std::size_t k = 0; k < x_lanes.size(); ++k)
         for (std::size_t i = 0; i < xs[l][k].size(); ++i) x_lanes[k][i * width + l] = xs[l][k][i];
     }
+    poison(y_lanes);
     batch(x_lanes, y_lanes);
     for (std::size_t l = 0; l < width; ++l) {
       runtime(xs[l], expected);
@@ -208,6 +219,7 @@ void batch_bit_for_bit(const Model<S>& model, States states, int lanes, const ch
       std::copy(xs[s][k].begin(), xs[s][k].end(),
                 x_rows[k].begin() + static_cast<std::ptrdiff_t>(s * xs[s][k].size()));
   }
+  poison(y_rows);
   many(count, x_rows, y_rows);
   for (int s = 0; s < count; ++s) {
     runtime(xs[s], expected);
