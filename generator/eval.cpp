@@ -263,7 +263,7 @@ class ResultWriter {
   std::size_t n_;
   Workspace<double> ws_;
   std::vector<double> tau_, qdd_, M_, Minv_, dtau_dq_, dtau_dv_, dqdd_dq_, dqdd_dv_, R_, p_, J_;
-  std::vector<std::string> frame_keys_;   // safe_text of each frame's name, quoted
+  std::vector<std::string> frame_keys_;   // python_text of each frame's name, quoted
   std::vector<std::size_t> frame_order_;  // the frames in their keys' order
   json row_ = json::array();  // put_array's, kept for its capacity
   std::string text_;          // likewise
@@ -284,9 +284,9 @@ ResultWriter::ResultWriter(const Model<double>& model, const std::string& name,
       throw InputError(reason + ", or leave out --derivatives (its \"Minv\" needs ABA's pivots)");
   }
   if (!options.frames) return;
-  // safe_text is injective (its escapes start with a backslash, and a backslash is escaped), so
-  // different names stay different keys, and no frame's results overwrite another's
-  for (const Frame<double>& frame : model.frames) frame_keys_.push_back(safe_text(frame.name));
+  // names as the Python module reads them; two frames that read the same are refused, so no
+  // frame's results overwrite another's
+  for (const Frame<double>& frame : model.frames) frame_keys_.push_back(python_text(frame.name));
   frame_order_.resize(frame_keys_.size());
   std::iota(frame_order_.begin(), frame_order_.end(), std::size_t{0});
   std::sort(frame_order_.begin(), frame_order_.end(),
@@ -294,7 +294,7 @@ ResultWriter::ResultWriter(const Model<double>& model, const std::string& name,
   for (std::size_t k = 1; k < frame_order_.size(); ++k)
     if (frame_keys_[frame_order_[k]] == frame_keys_[frame_order_[k - 1]])
       throw InputError(fmt::format("--frames: two frames are named '{}'",
-                                   frame_keys_[frame_order_[k]]));
+                                   safe_text(frame_keys_[frame_order_[k]])));
   for (std::string& key : frame_keys_) key = json(key).dump();
   R_.resize(9 * frame_keys_.size());
   p_.resize(3 * frame_keys_.size());
@@ -396,7 +396,7 @@ void ResultWriter::write(const State& state, std::size_t s) {
 
 void ResultWriter::start() {
   std::vector<std::string> joints;
-  for (const std::string& name : velocity_names(model_)) joints.push_back(safe_text(name));
+  for (const std::string& name : velocity_names(model_)) joints.push_back(python_text(name));
   std::string head = json{{"joints", joints}, {"nq", model_.nq}, {"nv", model_.nv}}.dump(2);
   head.resize(head.size() - 2);  // "\n}": the results follow
   put(head + ",\n  \"results\": [");

@@ -150,7 +150,7 @@ std::string string_literal(std::string_view text) {
   return out + "\"";
 }
 
-std::string python_literal(std::string_view text) {
+std::string python_text(std::string_view text) {
   std::string decoded;
   for (std::size_t k = 0; k < text.size();) {
     const unsigned char c = static_cast<unsigned char>(text[k]);
@@ -160,8 +160,10 @@ std::string python_literal(std::string_view text) {
     else decoded.append(text.substr(k, n));
     k += std::max<std::size_t>(n, 1);
   }
-  return string_literal(decoded);
+  return decoded;
 }
+
+std::string python_literal(std::string_view text) { return string_literal(python_text(text)); }
 
 std::string identifier(std::string_view name) {
   std::string s;

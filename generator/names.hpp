@@ -39,10 +39,13 @@ inline constexpr std::size_t max_identifier = 48;
 /// Whether name can be used as it is for a namespace and file prefix: identifier(name) == name.
 bool is_identifier(std::string_view name);
 
-/// A C++ string literal for a Python str (pybind11 docstrings and names): text as Python's
-/// bytes.decode("utf-8", "backslashreplace") reads it, valid UTF-8 as it is (NUL, quotes,
-/// newlines and all) and every other byte as the four characters \xNN, in string_literal's
-/// form. The literal always holds valid UTF-8, so the str is made at import without fail.
+/// Text as Python's bytes.decode("utf-8", "backslashreplace") reads it: valid UTF-8 as it is
+/// (NUL, quotes, newlines and all) and every other byte as the four characters \xNN. The Python
+/// module's names and dyngen eval's JSON names are this text, so the two agree.
+std::string python_text(std::string_view text);
+
+/// A C++ string literal, in string_literal's form, for a Python str (pybind11 docstrings and
+/// names): python_text, which is valid UTF-8, so the str is made at import without fail.
 std::string python_literal(std::string_view text);
 
 /// The names that a C package of that name declares at global scope: name_rnea and
