@@ -201,18 +201,48 @@ std::vector<std::string> c_names(std::string_view name) {
 }
 
 std::string gnuplot_string(std::string_view text) {
-  std::string out;
-  for (const char c : safe_text(text)) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+  std::string out = "'";
+  const std::string safe = safe_text(text);
+  for (std::size_t k = 0; k < safe.size(); ++k) {
+    if (safe.compare(k, 3, "\xef\xbf\xbe") == 0 || safe.compare(k, 3, "\xef\xbf\xbf") == 0) {
+      out += safe[k + 2] == '\xbe' ? "\\ufffe" : "\\uffff";
+      k += 2;
+    } else {
+      if (safe[k] == '\'') out += '\'';
+      out += safe[k];
+    }
   }
-  return out;
+  return out + "'";
 }
 
+namespace {
+
+/// The length of the longest run of backticks in text.
+std::size_t longest_backtick_run(std::string_view text) {
+  std::size_t longest = 0, run = 0;
+  for (const char c : text) {
+    run = c == '`' ? run + 1 : 0;
+    longest = std::max(longest, run);
+  }
+  return longest;
+}
+
+}  // namespace
+
 std::string markdown_code(std::string_view text) {
-  std::string s = safe_text(text);
-  std::replace(s.begin(), s.end(), '`', '\'');
-  return "`" + s + "`";
+  const std::string s = safe_text(text);
+  const std::string fence(longest_backtick_run(s) + 1, '`');
+  // a span of spaces only keeps them all; any other loses one space from each end
+  const bool pad = s.find_first_not_of(' ') != std::string::npos &&
+                   (s.front() == '`' || s.back() == '`' || s.front() == ' ' || s.back() == ' ');
+  const std::string space = pad ? " " : "";
+  return fence + space + s + space + fence;
+}
+
+std::string markdown_block(std::string_view text) {
+  const std::string s = safe_text(text, true);
+  const std::string fence(std::max<std::size_t>(3, longest_backtick_run(s) + 1), '`');
+  return fence + "\n" + s + (s.empty() || s.back() == '\n' ? "" : "\n") + fence;
 }
 
 }  // namespace dyngen::gen

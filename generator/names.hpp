@@ -53,10 +53,21 @@ std::string python_literal(std::string_view text);
 /// name_JointTrig, and the macros NAME_NQ, NAME_NV, NAME_NFRAMES and NAME_DYNAMICS_H.
 std::vector<std::string> c_names(std::string_view name);
 
-/// Text for a gnuplot double-quoted string: safe_text, with " and \ escaped.
+/// A gnuplot single-quoted string, quotes included, for a label drawn with `noenhanced`:
+/// safe_text (one line, no control character or invalid byte), with each ' doubled and U+FFFE
+/// and U+FFFF (which XML, and so gnuplot's SVG, cannot hold) as \ufffe and \uffff. gnuplot
+/// substitutes neither backquoted commands nor @macros in single-quoted strings and reads no
+/// backslash escapes there, so the label shows the text and nothing runs.
 std::string gnuplot_string(std::string_view text);
 
-/// Text for a Markdown code span, backticks included.
+/// A Markdown (CommonMark) code span of safe_text(text), backticks included: fenced by one
+/// backtick more than the longest run inside it, with a space inside each end when the text
+/// starts or ends with a backtick or a space, so that it shows the text exactly and nothing in
+/// it reads as Markdown or HTML. Not for table cells, where a | would end the cell.
 std::string markdown_code(std::string_view text);
+
+/// A fenced Markdown code block of safe_text(text, true) (lines kept), fenced by more backticks
+/// than any run in it, so that no line of the text closes it.
+std::string markdown_block(std::string_view text);
 
 }  // namespace dyngen::gen

@@ -1,6 +1,7 @@
 #include "report.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,11 @@ double number(const nlohmann::json& j) {
 
 bool has(const std::vector<Algorithm>& algorithms, Algorithm a) {
   return std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end();
+}
+
+/// Whether forward dynamics is measured through CRBA+LDLT too: with ABA, CRBA and RNEA.
+bool with_ldlt(const std::vector<Algorithm>& algorithms) {
+  return has(algorithms, "aba") && has(algorithms, "crba") && has(algorithms, "rnea");
 }
 
 /// The algorithms generated in float: all but those that divide by ABA's pivots where the float
@@ -96,11 +102,12 @@ std::string harness_variants(const std::vector<Algorithm>& algorithms,
     text += fmt::format("  add_runtime<float>(\"{}\");\n", a);
     if (std::find(in_float.begin(), in_float.end(), a) != in_float.end())
       text += "  " + generated("float", name + "_float", "generated float");
-    if (a == "aba" && has(algorithms, "crba") && has(algorithms, "rnea"))
+    if (a == "aba" && with_ldlt(algorithms))
       for (const auto& [scalar, ns] : {std::pair{"double", name}, std::pair{"float", name + "_float"}})
         text += fmt::format(
             "  add<{0}>(\"aba\", \"generated CRBA+LDLT {0}\", [](const {0}* const* x, {0}* const* y) {{\n"
-            "    ldlt_{0}({1}::crba, {1}::rnea, x[0], x[1], x[2], y[0]);\n  }});\n",
+            "    ldlt_forward_dynamics<{0}>({1}::nv, {1}::crba, {1}::rnea, x[0], x[1], x[2], y[0]);\n"
+            "  }});\n",
             scalar, ns);
   }
   return text;
@@ -147,15 +154,60 @@ std::string markdown_tables(const nlohmann::json& results) {
   return out;
 }
 
-/// gnuplot data blocks, one panel per algorithm and a last one with the key. A variant has the
-/// same point style in every panel.
-std::pair<std::string, std::string> plot_parts(const nlohmann::json& results, int& panels) {
-  std::vector<std::string> variants;
-  for (const nlohmann::json& r : results)
-    if (std::find(variants.begin(), variants.end(), r["variant"]) == variants.end())
-      variants.push_back(r["variant"]);
-  std::vector<std::string> panel_data, panel_plots;
-  for (const std::string& a : result_algorithms(results)) {
+/// How the plot draws a variant: a colour per way of computing (Okabe and Ito's palette, which
+/// colour-blind readers tell apart too) and a shape, filled for double and open for float.
+struct VariantStyle {
+  std::string_view variant;
+  const char* colour;
+  int point;  // gnuplot's point type: 7 circle, 5 square, 13 diamond, 9 and 11 triangles
+};
+
+/// Every variant the harness measures, in the legend's order: two rows, double above float.
+constexpr VariantStyle variant_styles[] = {
+    {"runtime double", "#000000", 7},
+    {"runtime float", "#000000", 6},
+    {"generated double", "#0072B2", 5},
+    {"generated float", "#0072B2", 4},
+    {"generated CRBA+LDLT double", "#CC79A7", 13},
+    {"generated CRBA+LDLT float", "#CC79A7", 12},
+    {"generated double, FMA", "#009E73", 9},
+    {"generated double, fast-math", "#D55E00", 11},
+};
+
+const VariantStyle& style_of(const std::string& variant) {
+  for (const VariantStyle& s : variant_styles)
+    if (s.variant == variant) return s;
+  throw std::logic_error("internal error: the plot has no style for variant " + variant);
+}
+
+std::string point_style(const VariantStyle& s) {
+  return fmt::format("lc rgb '{}' pt {} ps 1.8 lw 1.5", s.colour, s.point);
+}
+
+/// Labelled ticks of a logarithmic time axis over [lo, hi]: 1, 2 and 5 in every decade, or
+/// decades only over more than two and a half of them, so that a short range has several.
+std::string time_tics(double lo, double hi) {
+  const bool fine = hi / lo < std::pow(10.0, 2.5);
+  std::string tics;
+  for (int e = static_cast<int>(std::floor(std::log10(lo))); std::pow(10.0, e) <= hi; ++e)
+    for (const double m : fine ? std::vector<double>{1, 2, 5} : std::vector<double>{1})
+      if (const double t = m * std::pow(10.0, e); t >= lo && t <= hi)
+        tics += fmt::format("{}'{}' {:g}", tics.empty() ? "" : ", ", fmt::format("{:g}", t), t);
+  return "(" + tics + ")";
+}
+
+/// The plot's data blocks and panels: one per algorithm, each point a variant's median error
+/// against its median time, its bar reaching the worst error; a legend below them all.
+std::string plot_script(const nlohmann::json& results, const std::string& robot, int states,
+                        const std::string& banner) {
+  const std::vector<std::string> algorithms = result_algorithms(results);
+  const int panels = static_cast<int>(algorithms.size());
+  const int columns = std::min(panels, 3), rows = (panels + columns - 1) / columns;
+  const int panel_width = 520, panel_height = 420, title_height = 70, key_height = 90;
+  const int width = columns * panel_width, height = title_height + rows * panel_height + key_height;
+  std::string data, plots;
+  for (int p = 0; p < panels; ++p) {
+    const std::string& a = algorithms[p];
     std::string block, series;
     double x_lo = 1e300, x_hi = 0, y_lo = 1e300, y_hi = 0;
     int k = 0;
@@ -168,31 +220,102 @@ std::pair<std::string, std::string> plot_parts(const nlohmann::json& results, in
       block += fmt::format("{:.6g} {:.6g} {:.6g} {:.6g}\n", ns, median, median, worst);
       x_lo = std::min(x_lo, ns), x_hi = std::max(x_hi, ns);
       y_lo = std::min(y_lo, median), y_hi = std::max(y_hi, worst);
-      const auto style = std::find(variants.begin(), variants.end(), r["variant"]) - variants.begin();
-      series += fmt::format(
-          "{}${} every ::{}::{} using 1:2:3:4 with yerrorbars lc {} pt {} ps 1.3 title \"{}\"",
-          k == 0 ? "plot " : ", \\\n     ", a, k, k, style + 1, style + 4,
-          r["variant"].get<std::string>());
+      series += fmt::format("{}${} every ::{}::{} using 1:2:3:4 with yerrorbars {} notitle",
+                            k == 0 ? "plot " : ", \\\n     ", a, k, k,
+                            point_style(style_of(r["variant"])));
       ++k;
     }
-    if (k == 0) continue;
-    panel_data.push_back(fmt::format("${} << EOD\n{}EOD\n", a, block));
-    // a margin around the points, so that none sits on the frame
-    panel_plots.push_back(fmt::format("set title \"{}\"\nset xrange [{:.3g}:{:.3g}]\n"
-                                      "set yrange [{:.3g}:{:.3g}]\n{}\n",
-                                      algorithm_title(a), x_lo / 1.5, x_hi * 1.5, y_lo / 10,
-                                      y_hi * 10, series));
+    data += fmt::format("${} << EOD\n{}EOD\n", a, block);
+    // whole decades of error with a margin, so that no point sits on the frame
+    const int y_from = static_cast<int>(std::floor(std::log10(y_lo) - 0.5));
+    const int y_to = static_cast<int>(std::ceil(std::log10(y_hi) + 0.5));
+    plots += fmt::format(
+        "set origin {:.4f},{:.4f}\nset size {:.4f},{:.4f}\nset title '{}' noenhanced font ',14'\n"
+        "set xrange [{:.3g}:{:.3g}]\nset xtics {}\nset yrange [1e{}:1e{}]\nset ytics {:g}\n{}\n",
+        static_cast<double>(p % columns * panel_width) / width,
+        static_cast<double>(key_height + (rows - 1 - p / columns) * panel_height) / height,
+        static_cast<double>(panel_width) / width, static_cast<double>(panel_height) / height,
+        algorithm_title(a), x_lo / 1.5, x_hi * 1.5, time_tics(x_lo / 1.5, x_hi * 1.5), y_from,
+        y_to, std::pow(10.0, (y_to - y_from + 7) / 8), series);
   }
-  std::string data, plots = "unset key\n", key;
-  for (std::size_t p = 0; p < panel_plots.size(); ++p) data += panel_data[p], plots += panel_plots[p];
-  for (std::size_t v = 0; v < variants.size(); ++v)
-    key += fmt::format("{}NaN with points lc {} pt {} ps 1.3 title \"{}\"",
-                       v == 0 ? "plot " : ", \\\n     ", v + 1, v + 4, variants[v]);
-  plots += "unset title\nunset border\nunset tics\nunset grid\nunset xlabel\nunset ylabel\n"
-           "unset logscale\nset xrange [0:1]\nset yrange [0:1]\nset key center center\n" +
-           key + "\n";
-  panels = static_cast<int>(panel_plots.size()) + 1;
-  return {data, plots};
+  // the legend: a panel of its own below the others, with every variant measured
+  std::string key;
+  for (const VariantStyle& s : variant_styles)
+    for (const nlohmann::json& r : results)
+      if (r["variant"] == s.variant) {
+        key += fmt::format("{}NaN with points {} title '{}'", key.empty() ? "plot " : ", \\\n     ",
+                           point_style(s), s.variant);
+        break;
+      }
+  plots += fmt::format(
+      "set origin 0,0\nset size 1,{:.4f}\nunset title\nunset border\nunset tics\nunset grid\n"
+      "unset xlabel\nunset ylabel\nunset logscale\nset xrange [0:1]\nset yrange [0:1]\n"
+      "set margins 0,0,0,0\n"
+      "set key center center vertical maxrows 2 reverse Left width 3 samplen 1 spacing 1.5 "
+      "font ',13'\n{}\n",
+      static_cast<double>(key_height) / height, key);
+  return fill("report_plot.gp.in",
+              {{"banner", "# " + banner},
+               {"script", "report.gp"},
+               {"svg", "report.svg"},
+               {"width", std::to_string(width)},
+               {"height", std::to_string(height)},
+               {"data", data},
+               {"title", fmt::format("{} . ': relative error against time per call' . \"\\n\" . "
+                                     "'{} random states: the point is the median error, the bar "
+                                     "reaches the worst. Lower left is better: fewer errors, less "
+                                     "time.'",
+                                     gnuplot_string(robot), states)},
+               {"plots", plots}});
+}
+
+/// report.md: the summary, the tables and the plot, every name and the command line in code
+/// spans or blocks that show them as written.
+std::string report_markdown(const Robot& robot, const ReportOptions& options,
+                            const numerics::Conditioning& c, const nlohmann::json& report) {
+  bool with_pivots = false;
+  for (const Algorithm& a : options.algorithms)
+    with_pivots = with_pivots || algorithm_spec(a).divides_by_pivots;
+  std::string summary = fmt::format(
+      "Robot {} from {} (sha256 {}): {} joints, nq = {}{}. dyngen {}.\n\n{}",
+      markdown_code(robot.name), markdown_code(report["robot_file"].get<std::string>()),
+      robot.sha256, robot.model.nv, robot.model.nq,
+      options.model_flags.empty() ? "" : ", options " + markdown_code(options.model_flags),
+      version, markdown_block(conditioning_text(c, with_pivots)));
+  const std::vector<Algorithm> in_float = float_algorithms(robot, options.algorithms);
+  std::string left_out, joints;
+  for (const Algorithm& a : options.algorithms)
+    if (!has(in_float, a)) left_out += (left_out.empty() ? "" : ", ") + a;
+  for (const int i : joints_blocking_aba_in_float(robot.model))
+    joints += (joints.empty() ? "" : ", ") + markdown_code(robot.model.joint_name[i]);
+  if (!left_out.empty())
+    summary += fmt::format(
+        "\n\nNo generated float ABA ({}): once the model's constants are rounded to float, these "
+        "joints move no inertia, so it cannot be generated (the runtime's float ABA divides by "
+        "zero there): {}.",
+        left_out, joints);
+  return fill("report.md.in",
+              {{"robot", markdown_code(robot.name)},
+               {"summary", summary},
+               {"states", std::to_string(report["states"].get<int>())},
+               {"seed", std::to_string(options.seed)},
+               {"floor", fmt::format("{:g}", report["error_floor"].get<double>())},
+               {"bits", std::to_string(report["reference_bits"].get<int>())},
+               {"repetitions", std::to_string(options.repetitions)},
+               {"min_time", fmt::format("{:g}", options.min_time)},
+               {"timed_states", std::to_string(report["timed_states"].get<int>())},
+               {"cpus", std::to_string(report["cpus"].get<int>())},
+               {"mhz", fmt::format("{:.0f}", report["cpu_mhz"].get<double>())},
+               {"tables", markdown_tables(report["results"])},
+               {"svg", "report.svg"},
+               {"command", markdown_code(options.command)}});
+}
+
+/// The first line of every file the report writes, for a comment.
+std::string banner_text(const Robot& robot) {
+  return fmt::format("Written by dyngen {} report for robot '{}' ({}); rewritten on every run.",
+                     version, safe_text(robot.name),
+                     safe_text(fs::path(robot.path).filename().string()));
 }
 
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
@@ -215,25 +338,24 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
     if (!options.quiet) fmt::print("[{}/5] {}\n", k, text), std::fflush(stdout);
   };
 
-  const std::vector<int> blocking_in_float = joints_blocking_aba_in_float(robot.model);
   const std::vector<Algorithm> in_float = float_algorithms(robot, options.algorithms);
-  bool with_pivots = false;
-  for (const Algorithm& a : options.algorithms)
-    with_pivots = with_pivots || algorithm_spec(a).divides_by_pivots;
   step(1, "generating the code: double, float, double for FMA, double for fast-math");
   const numerics::Conditioning c =
       write_variant(robot, options, name, false, work / "double", true);
   write_variant(robot, options, name + "_float", true, work / "float", false);
   write_variant(robot, options, name + "_fma", false, work / "fma", false);
   write_variant(robot, options, name + "_fastmath", false, work / "fastmath", false);
-  const std::string banner = fmt::format(
-      "Written by dyngen {} report for robot '{}' ({}); rewritten on every run.", version,
-      safe_text(robot.name), safe_text(fs::path(robot.path).filename().string()));
+  const std::string banner = banner_text(robot);
   write_file(work / "CMakeLists.txt",
-             fill("report_CMakeLists.txt.in", {{"banner", "# " + banner}, {"name", name},
-                                                {"robot", safe_text(robot.name)}}));
-  write_file(work / "harness.cpp",
-             fill("report_harness.cpp.in",
+             fill("report_CMakeLists.txt.in", {{"banner", "# " + banner},
+                                                {"name", name},
+                                                {"robot", safe_text(robot.name)},
+                                                {"ldlt", with_ldlt(options.algorithms) ? "ldlt.cpp" : ""}}));
+  for (const char* part :
+       {"harness.hpp", "harness.cpp", "runtime.cpp", "ldlt.cpp", "reference.cpp"})
+    write_file(work / part, fill(fmt::format("report_{}.in", part), {{"banner", "// " + banner}}));
+  write_file(work / "variants.cpp",
+             fill("report_variants.cpp.in",
                   {{"banner", "// " + banner},
                    {"name", name},
                    {"robot", safe_text(robot.name)},
@@ -245,7 +367,7 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
       fmt::format("cmake -S {} -B {} -Ddyngen_DIR={}", shell_quoted(work.string()),
                   shell_quoted(build.string()), shell_quoted(options.package_dir)),
       work / "configure.log", false);
-  step(3, "building the harness (the generated code four times; big robots take minutes)");
+  step(3, "building the harness (the generated code four ways, and the runtime, in parallel)");
   run_logged("building the harness",
       fmt::format("cmake --build {} -j {}", shell_quoted(build.string()),
                   std::max(1u, std::thread::hardware_concurrency())),
@@ -261,8 +383,15 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
       work / "run.log", !options.quiet);
 
   step(5, "writing the report");
-  nlohmann::json report;
-  std::ifstream(results_path) >> report;
+  nlohmann::json measured;
+  std::ifstream(results_path) >> measured;
+  write_report(robot, options, c, measured, dir);
+}
+
+std::vector<std::string> write_report(const Robot& robot, const ReportOptions& options,
+                                      const numerics::Conditioning& c, nlohmann::json report,
+                                      const std::string& dir) {
+  const fs::path out_dir(dir);
   add_speed_ups(report["results"]);
   report["robot"] = robot.name;
   report["dyngen"] = version;
@@ -277,81 +406,44 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
                             {"inertia_range", c.inertia_range},
                             {"aba_digits_lost", c.aba_digits_lost()},
                             {"float_unrepresentable", c.float_unrepresentable}};
-
-  std::string summary = fmt::format(
-      "Robot {} from {} (sha256 {}): {} joints, nq = {}{}. dyngen {}.\n\n```\n{}\n```",
-      markdown_code(robot.name), markdown_code(report["robot_file"].get<std::string>()),
-      robot.sha256, robot.model.nv, robot.model.nq,
-      options.model_flags.empty() ? "" : ", options " + markdown_code(options.model_flags),
-      version, safe_text(conditioning_text(c, with_pivots), true));
-  std::string left_out;
-  for (const Algorithm& a : options.algorithms)
-    if (!has(in_float, a)) left_out += (left_out.empty() ? "" : ", ") + a;
-  if (!left_out.empty())
-    summary += fmt::format(
-        "\n\nNo generated float ABA ({}): once the model's constants are rounded to float, these "
-        "joints move no inertia, so it cannot be generated (the runtime's float ABA divides by "
-        "zero there): {}.",
-        left_out, safe_text(joint_list(robot.model, blocking_in_float)));
-  const std::string markdown = fill(
-      "report.md.in",
-      {{"robot", markdown_code(robot.name)},
-       {"summary", summary},
-       {"states", std::to_string(report["states"].get<int>())},
-       {"seed", std::to_string(options.seed)},
-       {"floor", fmt::format("{:g}", report["error_floor"].get<double>())},
-       {"bits", std::to_string(report["reference_bits"].get<int>())},
-       {"repetitions", std::to_string(options.repetitions)},
-       {"min_time", fmt::format("{:g}", options.min_time)},
-       {"timed_states", std::to_string(report["timed_states"].get<int>())},
-       {"cpus", std::to_string(report["cpus"].get<int>())},
-       {"mhz", fmt::format("{:.0f}", report["cpu_mhz"].get<double>())},
-       {"tables", markdown_tables(report["results"])},
-       {"svg", "report.svg"},
-       {"command", options.command}});
-  int panels = 0;
-  const auto [data, plots] = plot_parts(report["results"], panels);
-  const std::string script = fill(
-      "report_plot.gp.in",
-      {{"banner", "# " + banner},
-       {"script", "report.gp"},
-       {"width", std::to_string(400 * panels)},
-       {"svg", "report.svg"},
-       {"data", data},
-       {"panels", std::to_string(panels)},
-       {"title", fmt::format("{}: error against time, {} states", gnuplot_string(robot.name),
-                             report["states"].get<int>())},
-       {"plots", plots}});
+  const std::string banner = banner_text(robot);
+  const std::string script =
+      plot_script(report["results"], robot.name, report["states"].get<int>(), banner);
 
   // every file under a temporary name first, then renamed into place
   const std::string tmp = ".tmp";
   std::vector<std::string> written = {"report.md", "report.json", "report.gp"};
   try {
-    write_file(out_dir / ("report.md" + tmp), markdown);
-    write_file(out_dir / ("report.json" + tmp), report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    write_file(out_dir / ("report.md" + tmp), report_markdown(robot, options, c, report));
+    // names that are not UTF-8 reach JSON with U+FFFD in place of their invalid bytes
+    write_file(out_dir / ("report.json" + tmp),
+               report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     write_file(out_dir / ("report.gp" + tmp), script);
     if (have_gnuplot()) {
       written.push_back("report.svg");
+      fs::create_directories(out_dir / "harness");
       run_logged("drawing the plot with gnuplot",
           fmt::format("cd {} && gnuplot -e \"output_file='report.svg{}'\" report.gp{} && "
                       "test -s report.svg{}",
                       shell_quoted(out_dir.string()), tmp, tmp, tmp),
-          work / "plot.log", false);
+          out_dir / "harness" / "plot.log", false);
     } else {
       fmt::print(stderr, "dyngen report: warning: gnuplot not found; no plot drawn (install "
-                         "gnuplot-nox, then run gnuplot report.gp in {})\n", dir);
+                         "gnuplot-nox, then run gnuplot report.gp in {})\n", safe_text(dir));
     }
   } catch (...) {
     std::error_code ignored;
     for (const std::string& f : written) fs::remove(out_dir / (f + tmp), ignored);
     throw;
   }
-  for (const std::string& f : written) fs::rename(out_dir / (f + tmp), out_dir / f);
-  if (!options.quiet) {
-    fmt::print("{}wrote", markdown_tables(report["results"]));
-    for (const std::string& f : written) fmt::print(" {}", (out_dir / f).string());
-    fmt::print("\n");
+  std::vector<std::string> paths;
+  for (const std::string& f : written) {
+    fs::rename(out_dir / (f + tmp), out_dir / f);
+    paths.push_back((out_dir / f).string());
   }
+  if (!options.quiet)
+    fmt::print("{}wrote {}\n", markdown_tables(report["results"]), fmt::join(paths, " "));
+  return paths;
 }
 
 }  // namespace dyngen::gen

@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "dyngen/numerics/conditioning.hpp"
 #include "generate.hpp"
 #include "robot.hpp"
 
@@ -35,5 +38,13 @@ inline constexpr const char* report_files[] = {"report.md", "report.json", "repo
 /// files into dir, each whole or not at all. Throws InputError for a robot without ABA when
 /// ABA is asked for, and std::runtime_error when a build or run fails (with its log's end).
 void make_report(const Robot& robot, const ReportOptions& options, const std::string& dir);
+
+/// The last step of make_report: writes the report files into dir from what the harness
+/// measured (its results.json) and the conditioning estimate, each whole or not at all, prints
+/// the tables and the files' paths (unless options.quiet), and returns the paths. The plot is drawn when gnuplot is installed (its log in
+/// dir/harness/plot.log).
+std::vector<std::string> write_report(const Robot& robot, const ReportOptions& options,
+                                      const numerics::Conditioning& c, nlohmann::json measured,
+                                      const std::string& dir);
 
 }  // namespace dyngen::gen

@@ -145,8 +145,20 @@ TEST_F(NameOption, RefusesAReservedNameAndSuggestsOne) {
 }
 
 TEST(MarkdownAndGnuplot, KeepTheirQuoting) {
-  EXPECT_EQ(markdown_code("a`b\nc"), "`a'b\\x0ac`");
-  EXPECT_EQ(gnuplot_string("say \"hi\"\\"), "say \\\"hi\\\"\\\\x5c");
+  // CommonMark: a code span ends at the first backtick run as long as its opening one, so the
+  // fence is one longer than any run inside; a space pads a span that starts or ends with a
+  // backtick or a space (one such space is dropped from each end when rendered)
+  EXPECT_EQ(markdown_code("ur5"), "`ur5`");
+  EXPECT_EQ(markdown_code("a`b``c<i>&amp;|\nd"), "```a`b``c<i>&amp;|\\x0ad```");
+  EXPECT_EQ(markdown_code("`touch x`"), "`` `touch x` ``");
+  EXPECT_EQ(markdown_code(" x"), "`  x `");
+  EXPECT_EQ(markdown_block("a\n```b\n"), "````\na\n```b\n````");
+  EXPECT_EQ(markdown_block("a\x01"), "```\na\\x01\n```");
+  // gnuplot: in single quotes only '' is special (no backslash escape, no `command`, no @macro)
+  EXPECT_EQ(gnuplot_string("say \"hi\" `id` @x 'q'\\"), "'say \"hi\" `id` @x ''q''\\x5c'");
+  EXPECT_EQ(gnuplot_string("a\nb\xff"), "'a\\x0ab\\xff'");
+  // XML 1.0 has no U+FFFE or U+FFFF, so gnuplot's SVG must not get them
+  EXPECT_EQ(gnuplot_string("x\xef\xbf\xbe\xef\xbf\xbf\xef\xbf\xbd"), "'x\\ufffe\\uffff\xef\xbf\xbd'");
 }
 
 /// Compiles source with the C++ compiler that built the tests, with trigraphs on and every
