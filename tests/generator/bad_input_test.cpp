@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -16,12 +16,15 @@
 
 #include "files.hpp"
 #include "generate.hpp"
+#include "pattern.hpp"
 #include "robot.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace dyngen::gen;
+using dyngen::test::Groups;
+using dyngen::test::Pattern;
 using dyngen::test::read;
 using dyngen::test::entries_of;
 using dyngen::test::snapshot;
@@ -313,12 +316,10 @@ TEST_F(Scratch, SubnormalGravityIsAFiniteNumber) {
 /// The numbers in text, thousands separators dropped: "40,000 and 2" is {2, 40000}.
 std::set<long> numbers_in(const std::string& text) {
   std::set<long> numbers;
-  static const std::regex number(R"(\b[0-9][0-9,]*\b)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), number);
-       it != std::sregex_iterator(); ++it) {
-    std::string digits = it->str();
-    std::erase(digits, ',');
-    numbers.insert(std::stol(digits));
+  static const Pattern number(R"(\b[0-9][0-9,]*\b)");
+  for (Groups g : number.find_all(text)) {
+    std::erase(g[0], ',');
+    numbers.insert(std::stol(g[0]));
   }
   return numbers;
 }
@@ -343,14 +344,10 @@ TEST_F(Scratch, HelpAndReadmeGiveTheSameStructureRules) {
 
 TEST(Readme, UR5sDefaultFramesAreTheRealOnesInTheirOrder) {
   const std::string readme = read(std::string(DYNGEN_SOURCE_DIR) + "/README.md");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(readme, m, std::regex(R"(by default [^(]*\(ur5: ([^)]*)\))")));
+  const std::optional<Groups> m = Pattern(R"(by default [^(]*\(ur5: ([^)]*)\))").search(readme);
+  ASSERT_TRUE(m);
   std::vector<std::string> said;
-  static const std::regex name("`([^`]+)`");
-  const std::string list = m[1];
-  for (auto it = std::sregex_iterator(list.begin(), list.end(), name);
-       it != std::sregex_iterator(); ++it)
-    said.push_back((*it)[1]);
+  for (const Groups& name : Pattern("`([^`]+)`").find_all((*m)[1])) said.push_back(name[1]);
   std::vector<std::string> real;
   const std::string ur5 = std::string(DYNGEN_SOURCE_DIR) + "/examples/ur5.urdf";
   for (const auto& f : load_robot(ur5).model.frames) real.push_back(f.name);
@@ -459,10 +456,7 @@ TEST(Romeo, AbaErrorListsExactlyTheHandJointsAndHowToLockThem) {
   ASSERT_NE(to, std::string::npos) << message;
   const std::string list = message.substr(from, to - from);
   std::set<std::string> listed;
-  const std::regex quoted("'([^']+)'");
-  for (auto it = std::sregex_iterator(list.begin(), list.end(), quoted);
-       it != std::sregex_iterator(); ++it)
-    listed.insert((*it)[1]);
+  for (const Groups& quoted : Pattern("'([^']+)'").find_all(list)) listed.insert(quoted[1]);
   EXPECT_EQ(listed, romeo_hand_joints) << message;
   for (const std::string& joint : romeo_hand_joints)
     EXPECT_NE(message.find("--lock " + joint), std::string::npos) << joint;

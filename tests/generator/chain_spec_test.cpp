@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -16,6 +16,7 @@
 
 #include "files.hpp"
 #include "generate.hpp"
+#include "pattern.hpp"
 #include "robot.hpp"
 
 namespace {
@@ -23,6 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace dyngen;
 using namespace dyngen::gen;
+using dyngen::test::Groups;
+using dyngen::test::Pattern;
 using dyngen::test::read;
 
 const std::string models = DYNGEN_TEST_MODELS;
@@ -287,15 +290,14 @@ const fs::path doc = fs::path(DYNGEN_SOURCE_DIR) / "docs" / "chain-spec.md";
 
 TEST_F(ChainSpec, DocumentedExamplesLoadAndGenerateWithoutWarnings) {
   const std::string text = read(doc);
-  const std::regex block("```yaml\n([^`]*)```");
   int examples = 0;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), block);
-       it != std::sregex_iterator(); ++it, ++examples) {
-    const Robot robot = load((*it)[1]);
-    EXPECT_TRUE(robot.warnings.empty()) << (*it)[1] << robot.warnings.front();
+  for (const Groups& block : Pattern("```yaml\n([^`]*)```").find_all(text)) {
+    ++examples;
+    const Robot robot = load(block[1]);
+    EXPECT_TRUE(robot.warnings.empty()) << block[1] << robot.warnings.front();
     GenerateOptions options;
     options.name = "example";
-    EXPECT_NO_THROW(generate(robot, options)) << (*it)[1];
+    EXPECT_NO_THROW(generate(robot, options)) << block[1];
   }
   EXPECT_GE(examples, 3);
 }
@@ -322,15 +324,15 @@ TEST_F(ChainSpec, DocumentedPlanarExampleIsPlanar5) {
 
 TEST_F(ChainSpec, DocumentationListsEveryKeyTheParserAccepts) {
   // the parser's own list of keys, from its unknown-key messages at each level
-  const std::regex allowed(R"(\(allowed: ([a-z_, ]+)\))");
+  const Pattern allowed(R"(\(allowed: ([a-z_, ]+)\))");
   std::set<std::string> keys;
   for (const std::string yaml :
        {"zzz: 1\n", "links: [{mass: 1, zzz: 1}]\n", "links: [{mass: 1, joint: {zzz: 1}}]\n",
         "links: [{mass: 1, inertia: {zzz: 1}}]\n"}) {
     const std::string message = error(yaml);
-    std::smatch m;
-    ASSERT_TRUE(std::regex_search(message, m, allowed)) << message;
-    std::istringstream list(m[1]);
+    const std::optional<Groups> m = allowed.search(message);
+    ASSERT_TRUE(m) << message;
+    std::istringstream list((*m)[1]);
     for (std::string key; std::getline(list, key, ',');) keys.insert(key.substr(key[0] == ' '));
   }
   EXPECT_EQ(keys.size(), 4u + 6 + 5 + 6 - 2) << "name is a key at three levels";

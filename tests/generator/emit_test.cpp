@@ -7,11 +7,10 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <map>
+#include <optional>
 #include <random>
-#include <regex>
 #include <set>
 #include <string>
 #include <utility>
@@ -23,6 +22,7 @@
 #include "dyngen/frames.hpp"
 #include "emit.hpp"
 #include "generate.hpp"
+#include "pattern.hpp"
 #include "robot.hpp"
 #include "trace.hpp"
 
@@ -30,6 +30,8 @@ namespace {
 
 using namespace dyngen;
 using namespace dyngen::gen;
+using dyngen::test::Groups;
+using dyngen::test::Pattern;
 
 template <class T>
 using Bits = std::conditional_t<std::is_same_v<T, float>, std::uint32_t, std::uint64_t>;
@@ -60,15 +62,16 @@ std::vector<T> sample_values() {
 /// an 'f' suffix for float. Fails the test if the text is not a floating literal.
 template <class T>
 T read_back(const std::string& text) {
-  static const std::regex form(R"(^(\(-)?[0-9]+(\.[0-9]*)?(e[+-]?[0-9]+)?(f)?(\))?$)");
-  std::smatch m;
-  EXPECT_TRUE(std::regex_match(text, m, form)) << "'" << text << "' is not a C++ literal";
-  EXPECT_EQ(m[1].matched, m[5].matched) << text << ": unbalanced parentheses";
-  EXPECT_TRUE(m[2].matched || m[3].matched) << text << ": an integer literal, not floating";
-  EXPECT_EQ(m[4].matched, (std::is_same_v<T, float>)) << text << ": wrong suffix for the type";
+  // each group, when it takes part, is not empty
+  static const Pattern form(R"(^(\(-)?[0-9]+(\.[0-9]*)?(e[+-]?[0-9]+)?(f)?(\))?$)");
+  const Groups m = form.match(text).value_or(Groups(6));
+  EXPECT_FALSE(m[0].empty()) << "'" << text << "' is not a C++ literal";
+  EXPECT_EQ(m[1].empty(), m[5].empty()) << text << ": unbalanced parentheses";
+  EXPECT_FALSE(m[2].empty() && m[3].empty()) << text << ": an integer literal, not floating";
+  EXPECT_EQ(!m[4].empty(), (std::is_same_v<T, float>)) << text << ": wrong suffix for the type";
   std::string number = text;
-  if (m[1].matched) number = number.substr(1, number.size() - 2);
-  if (m[4].matched) number.pop_back();
+  if (!m[1].empty()) number = number.substr(1, number.size() - 2);
+  if (!m[4].empty()) number.pop_back();
   char* end = nullptr;
   const T x = std::is_same_v<T, float> ? std::strtof(number.c_str(), &end)
                                        : static_cast<T>(std::strtod(number.c_str(), &end));
@@ -158,7 +161,7 @@ TEST_P(Emitted, SectionHeadersNameLinkJointTypeAndPass) {
   const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/planar5.yaml");
   const Model<double>& model = robot.model;
   const std::string source = generated_source(GetParam());
-  const std::regex header(
+  const Pattern header(
       R"(^    // ---- link '(\w+)' \((\d+)\) <- (base|'(\w+)' \((\d+)\)); joint '(\w+)': )"
       R"((.+); (forward pass|backward pass|kinematics|composite inertia|)"
       R"(a descendant's column of M carried up|velocity pass|articulated inertia pass|)"
@@ -166,8 +169,9 @@ TEST_P(Emitted, SectionHeadersNameLinkJointTypeAndPass) {
   std::set<std::pair<int, std::string>> sections;
   for (const std::string& line : lines_of(source)) {
     if (line.find("// ----") == std::string::npos || line == "    // ---- outputs") continue;
-    std::smatch m;
-    ASSERT_TRUE(std::regex_match(line, m, header)) << line;
+    const std::optional<Groups> match = header.match(line);
+    ASSERT_TRUE(match) << line;
+    const Groups& m = *match;
     const int body = std::stoi(m[2]);
     ASSERT_LT(body, model.nbodies) << line;
     EXPECT_EQ(m[1], model.body_name[body]) << line;
@@ -200,18 +204,18 @@ TEST_P(Emitted, NoTrivialOperationsOrUnfoldedConstants) {
                                " 1.0 * ", " 1.0f * ", " 0.0 + ", " 0.0f + ", "* (-1.0"})
     EXPECT_EQ(source.find(artifact), std::string::npos) << "'" << artifact << "'";
   const std::string type = single ? "float" : "double";
-  const std::regex statement("^    const " + type + R"( (\w+) = (.+);$)");
-  const std::regex binary(R"(^(\S+) ([-+*/]) (\S+)$)");
-  const std::regex constant(R"(^\(?-?[0-9][0-9.e+-]*f?\)?$)");
+  const Pattern statement("^    const " + type + R"( (\w+) = (.+);$)");
+  const Pattern binary(R"(^(\S+) ([-+*/]) (\S+)$)");
+  const Pattern constant(R"(^\(?-?[0-9][0-9.e+-]*f?\)?$)");
   int statements = 0;
   for (const std::string& line : lines_of(source)) {
-    std::smatch s, b;
-    if (!std::regex_match(line, s, statement)) continue;
+    const std::optional<Groups> s = statement.match(line);
+    if (!s) continue;
     ++statements;
-    const std::string expr = s[2];
-    if (!std::regex_match(expr, b, binary)) continue;
-    const std::string lhs = b[1], op = b[2], rhs = b[3];
-    const bool cl = std::regex_match(lhs, constant), cr = std::regex_match(rhs, constant);
+    const std::optional<Groups> b = binary.match((*s)[2]);
+    if (!b) continue;
+    const std::string lhs = (*b)[1], op = (*b)[2], rhs = (*b)[3];
+    const bool cl = constant.match(lhs).has_value(), cr = constant.match(rhs).has_value();
     EXPECT_FALSE(cl && cr) << "unfolded constants: " << line;
     auto value = [](std::string t) {
       t.erase(std::remove_if(t.begin(), t.end(), [](char c) { return c == '(' || c == ')'; }),
@@ -250,15 +254,16 @@ TEST_P(Emitted, StatementsUseTheScalarTypeAndItsLiterals) {
   const bool single = GetParam();
   const std::string source = generated_source(single);
   const std::string declaration = std::string("    const ") + (single ? "float " : "double ");
-  const std::regex number(R"((^|[ (])([0-9]+\.[0-9]*(e[+-]?[0-9]+)?|[0-9]+e[+-]?[0-9]+)(f?)\b)");
+  const Pattern number(R"((^|[ (])([0-9]+\.[0-9]*(e[+-]?[0-9]+)?|[0-9]+e[+-]?[0-9]+)(f?)\b)");
   int literals = 0;
   for (const std::string& line : lines_of(source)) {
     if (line.rfind("    const ", 0) != 0) continue;
     EXPECT_EQ(line.rfind(declaration, 0), 0u) << line;
     const std::string expr = line.substr(line.find(" = "));
-    for (auto it = std::sregex_iterator(expr.begin(), expr.end(), number);
-         it != std::sregex_iterator(); ++it, ++literals)
-      EXPECT_EQ((*it)[4].length() == 1, single) << line;
+    for (const Groups& literal : number.find_all(expr)) {
+      ++literals;
+      EXPECT_EQ(literal[4].length() == 1, single) << line;
+    }
   }
   EXPECT_GT(literals, 10);
 }
@@ -286,16 +291,16 @@ TEST_P(Emitted, SinAndCosOnlyInJointTrigOncePerRevoluteAngle) {
     EXPECT_EQ(rest.find(call), std::string::npos) << call << " outside joint_trig";
   // each revolute angle once, in a call for one angle or for a run of them
   std::vector<int> calls(model.nq, 0);
-  const std::regex single(
+  const Pattern single(
       R"(dyngen_sincosf?\(q\[(\d+)\], &trig\.sin_q\[\1\], &trig\.cos_q\[\1\]\);)");
-  const std::regex run(R"(dyngen_sincosf?_array\(q \+ (\d+), trig\.sin_q \+ \1, trig\.cos_q \+ \1, )"
-                       R"((\d+)\);)");
+  const Pattern run(R"(dyngen_sincosf?_array\(q \+ (\d+), trig\.sin_q \+ \1, trig\.cos_q \+ \1, )"
+                     R"((\d+)\);)");
   for (const std::string& line : lines_of(trig)) {
-    std::smatch m;
-    if (std::regex_search(line, m, single)) {
-      ++calls.at(std::stoi(m[1]));
-    } else if (std::regex_search(line, m, run)) {
-      for (int k = std::stoi(m[1]); k < std::stoi(m[1]) + std::stoi(m[2]); ++k) ++calls.at(k);
+    if (const std::optional<Groups> m = single.search(line)) {
+      ++calls.at(std::stoi((*m)[1]));
+    } else if (const std::optional<Groups> r = run.search(line)) {
+      for (int k = std::stoi((*r)[1]); k < std::stoi((*r)[1]) + std::stoi((*r)[2]); ++k)
+        ++calls.at(k);
     }
   }
   for (int i = 0; i < model.nbodies; ++i)
@@ -308,18 +313,17 @@ TEST_P(Emitted, SinAndCosOnlyInJointTrigOncePerRevoluteAngle) {
 /// How often each operation statement runs in one call of code: the body's own statements,
 /// plus each shared function's statements once per call of it.
 long statements_run(const EmittedCode& code, const std::string& algorithm) {
-  const std::regex statement(R"(^    const double \w+ = .+;$)");
-  const std::regex function("^static void (" + algorithm + R"(_shape_\d+)\()");
+  const Pattern statement(R"(^    const double \w+ = .+;$)");
+  const Pattern function("^static void (" + algorithm + R"(_shape_\d+)\()");
   std::map<std::string, long> per_function;
   std::string current;
   for (const std::string& line : lines_of(code.helpers)) {
-    std::smatch m;
-    if (std::regex_search(line, m, function)) current = m[1];
-    if (!current.empty() && std::regex_match(line, statement)) ++per_function[current];
+    if (const std::optional<Groups> m = function.search(line)) current = (*m)[1];
+    if (!current.empty() && statement.match(line)) ++per_function[current];
   }
   long run = 0;
   for (const std::string& line : lines_of(code.body)) {
-    if (std::regex_match(line, statement)) ++run;
+    if (statement.match(line)) ++run;
     for (const auto& [name, count] : per_function)
       if (line.find(name + "(") != std::string::npos) run += count;
   }
@@ -362,13 +366,12 @@ TEST(SharedStructure, RunsEveryOperationOfTheUnrolledCodeOnce) {
 /// The operations one call of lane code performs: each scalar statement one, each vector
 /// statement one per lane.
 long lane_statements_run(const EmittedCode& code, const std::string& scalar = "double") {
-  const std::regex statement("^    const " + scalar + R"( \w+ = .+;$)");
-  const std::regex vector(R"(^    const lanes(\d) \w+ = .+;$)");
+  const Pattern statement("^    const " + scalar + R"( \w+ = .+;$)");
+  const Pattern vector(R"(^    const lanes(\d) \w+ = .+;$)");
   long run = 0;
   for (const std::string& line : lines_of(code.body)) {
-    std::smatch m;
-    if (std::regex_match(line, statement)) ++run;
-    else if (std::regex_match(line, m, vector)) run += std::stol(m[1]);
+    if (statement.match(line)) ++run;
+    else if (const std::optional<Groups> m = vector.match(line)) run += std::stol((*m)[1]);
   }
   return run;
 }
@@ -579,8 +582,9 @@ TEST(Batch, PrintsTheStatementsOfTheScalarCodeOverLanes) {
         if (!line.starts_with("    const double ")) continue;
         line.replace(0, 17, "    const lane ");
         // q[3] -> q3, trig.sin_q[3] -> sin_q3
-        line = std::regex_replace(line, std::regex(R"(\b(q|v|a|tau)\[(\d+)\])"), "$1$2");
-        line = std::regex_replace(line, std::regex(R"(trig\.(sin|cos)_q\[(\d+)\])"), "$1_q$2");
+        static const Pattern input(R"(\b(q|v|a|tau)\[(\d+)\])"),
+            angle(R"(trig\.(sin|cos)_q\[(\d+)\])");
+        line = angle.replace(input.replace(line, "$1$2"), "$1_q$2");
       } else if (!line.starts_with("    const lane ")) {
         continue;
       }
@@ -711,10 +715,10 @@ OutputWrites output_writes(const std::string& source, const std::string& functio
                            const std::string& array, std::size_t size) {
   OutputWrites w{std::vector<int>(size, 0), std::vector<bool>(size, false)};
   const std::string lanes = R"((?: \* lanes)?)";
-  const std::regex loop(R"(    for \(int k = (\d+))" + lanes + R"(; k < (\d+))" + lanes +
-                        R"(; \+\+k\) )" + array + R"(\[k\] = 0\.0f?;.*)");
-  const std::regex store("    (?:" + array + R"(\[(\d+)\] = (.+)|store\()" + array +
-                         R"( \+ (\d+) \* lanes, (.+)\));)");
+  const Pattern loop(R"(    for \(int k = (\d+))" + lanes + R"(; k < (\d+))" + lanes +
+                     R"(; \+\+k\) )" + array + R"(\[k\] = 0\.0f?;.*)");
+  const Pattern store("    (?:" + array + R"(\[(\d+)\] = (.+)|store\()" + array +
+                      R"( \+ (\d+) \* lanes, (.+)\));)");
   std::vector<int> loops(size, 0), stores(size, 0);
   bool inside = false, outputs = false, filled = false;
   int row = 0;
@@ -723,17 +727,18 @@ OutputWrites output_writes(const std::string& source, const std::string& functio
     if (!inside) continue;
     if (line == "}") break;
     outputs = outputs || line == "    // ---- outputs";
-    std::smatch m;
     if (!outputs) continue;
-    if (std::regex_match(line, m, loop)) {
-      const std::size_t begin = std::stoul(m[1]);
-      const std::size_t end = std::min<std::size_t>(std::stoul(m[2]), size);
+    if (const std::optional<Groups> m = loop.match(line)) {
+      const std::size_t begin = std::stoul((*m)[1]);
+      const std::size_t end = std::min<std::size_t>(std::stoul((*m)[2]), size);
       filled = filled || (begin == 0 && end == size);
       for (std::size_t k = begin; k < end; ++k) ++loops[k], w.zero[k] = true;
       row = 0;
-    } else if (std::regex_match(line, m, store)) {
-      const std::size_t k = std::stoul(m[1].matched ? m[1].str() : m[3].str());
-      const std::string value = m[2].matched ? m[2].str() : m[4].str();
+    } else if (const std::optional<Groups> st = store.match(line)) {
+      // a scalar store (groups 1 and 2) or a lane store (3 and 4)
+      const Groups& g = *st;
+      const std::size_t k = std::stoul(g[1].empty() ? g[3] : g[1]);
+      const std::string value = g[1].empty() ? g[4] : g[2];
       if (k >= size) continue;
       ++stores[k];
       w.zero[k] = value == "0.0" || value == "0.0f";
@@ -821,10 +826,8 @@ TEST(OutputZeros, EveryEntryWrittenAndTheZerosByLoops) {
       if (f.name != "star_dynamics.cpp") continue;
       EXPECT_NE(f.text.find("    for (int k = 0; k < 864; ++k) J[k] = 0.0;  // "),
                 std::string::npos);
-      const std::regex store(R"(\n    J\[\d+\] = )");
-      const std::ptrdiff_t stores = std::distance(
-          std::sregex_iterator(f.text.begin(), f.text.end(), store), std::sregex_iterator());
-      EXPECT_LE(stores, 12 * 6);
+      const std::size_t stores = Pattern(R"(\n    J\[\d+\] = )").find_all(f.text).size();
+      EXPECT_LE(stores, 12u * 6);
     }
   }
 }

@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,12 +17,15 @@
 
 #include "files.hpp"
 #include "names.hpp"
+#include "pattern.hpp"
 
 namespace dyngen::gen {
 namespace {
 
 namespace fs = std::filesystem;
 using test::CliResult;
+using test::Groups;
+using test::Pattern;
 using test::read;
 using test::run_dyngen;
 using test::ScratchTest;
@@ -120,11 +122,10 @@ TEST_F(CNames, CoverWhatTheCHeaderDeclares) {
             0);
   const std::string header = read(dir / "gen" / "dp_dynamics.h");
   const std::vector<std::string> names = c_names("dp");
-  const std::regex prefixed(R"(\b(dp|DP)_[A-Za-z0-9_]+)");
-  int declared = 0;
-  for (std::sregex_iterator m(header.begin(), header.end(), prefixed), end; m != end; ++m, ++declared)
-    EXPECT_NE(std::find(names.begin(), names.end(), m->str()), names.end()) << m->str();
-  EXPECT_GT(declared, 30);
+  const std::vector<Groups> declared = Pattern(R"(\b(dp|DP)_[A-Za-z0-9_]+)").find_all(header);
+  for (const Groups& m : declared)
+    EXPECT_NE(std::find(names.begin(), names.end(), m[0]), names.end()) << m[0];
+  EXPECT_GT(declared.size(), 30u);
 }
 
 class NameOption : public ScratchTest {};

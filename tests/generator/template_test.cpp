@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -13,12 +12,15 @@
 #include <gtest/gtest.h>
 
 #include "files.hpp"
+#include "pattern.hpp"
 #include "template.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace dyngen::gen;
+using dyngen::test::Groups;
+using dyngen::test::Pattern;
 using dyngen::test::read;
 
 const fs::path template_dir = fs::path(DYNGEN_SOURCE_DIR) / "templates";
@@ -32,10 +34,7 @@ std::set<std::string> template_names() {
 
 std::set<std::string> placeholders(const std::string& text) {
   std::set<std::string> keys;
-  const std::regex key("@([A-Za-z_]+)@");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), key); it != std::sregex_iterator();
-       ++it)
-    keys.insert((*it)[1]);
+  for (const Groups& key : Pattern("@([A-Za-z_]+)@").find_all(text)) keys.insert(key[1]);
   return keys;
 }
 

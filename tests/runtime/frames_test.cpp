@@ -12,13 +12,13 @@
 #include <functional>
 #include <iterator>
 #include <random>
-#include <regex>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "dyngen/dyngen.hpp"
+#include "pattern.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -110,10 +110,8 @@ TEST(Frames, EveryUrdfLinkIsAFrameOnTheBodyItMovesWith) {
   std::ifstream in(path);
   const std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::set<std::string> links;
-  const std::regex link(R"re(<link\s+name="([^"]+)")re");
-  for (auto it = std::sregex_iterator(urdf.begin(), urdf.end(), link); it != std::sregex_iterator();
-       ++it)
-    links.insert((*it)[1]);
+  for (const test::Groups& link : test::Pattern(R"re(<link\s+name="([^"]+)")re").find_all(urdf))
+    links.insert(link[1]);
   gen::LoadOptions all;
   all.all_frames = true;
   const Model<double> model = gen::load_robot(path, all).model;
