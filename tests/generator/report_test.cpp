@@ -158,6 +158,12 @@ TEST_F(Report, MeasuresEveryVariantOfEveryAlgorithm) {
   const nlohmann::json report = nlohmann::json::parse(read(out / "report.json"));
   EXPECT_EQ(report["states"], 40);
   EXPECT_EQ(report["robot"], json_name(more, "2dof_planar"));  // the name in the URDF
+  // the command line as a shell takes it back: the file's name quoted, the plain words not
+  EXPECT_NE(report["command"].get<std::string>().find("dyngen report " +
+                                                      shell_quoted(robot.string()) + " -o "),
+            std::string::npos)
+      << report["command"];
+  EXPECT_NE(report["command"].get<std::string>().find(" --states 40 "), std::string::npos);
   const std::string markdown = read(out / "report.md");
   expect_only_in_code(markdown, {"`touch ", "$(touch ", "<b>x</b>", "\\x0a# line", "<i>\\x0a.urdf"});
   const double aba_loss = std::pow(10.0, report["conditioning"]["aba_digits_lost"].get<double>());
