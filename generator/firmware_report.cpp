@@ -147,15 +147,16 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
     throw InputError(fmt::format("--target {}: dyngen firmware-report runs {}", target,
                                  fmt::join(firmware_report_targets, ", ")));
   const fs::path out_dir(dir), package_dir = out_dir / "package", build = out_dir / "build";
-  if (!options.force &&
-      !holds_only(out_dir, {std::begin(firmware_report_files), std::end(firmware_report_files)},
-                  {"package", "build"}))
+  if (const std::vector<std::string> foreign = foreign_entries(
+          out_dir, {std::begin(firmware_report_files), std::end(firmware_report_files)},
+          {"package", "build"});
+      !options.force && !foreign.empty())
     throw FileError(fmt::format(
-        "{}: exists and holds files that dyngen firmware-report did not write; it writes only "
-        "into a new or empty directory or over an earlier report. Choose another directory, or "
-        "give --force to write into it (its report files, package/ and build/ are replaced, the "
-        "rest kept).",
-        dir));
+        "{}: exists and holds files that dyngen firmware-report did not write ({}); it writes "
+        "only into a new or empty directory or over an earlier report. Choose another directory, "
+        "or give --force to write into it (its report files, package/ and build/ are replaced, "
+        "the rest kept).",
+        dir, listed(foreign)));
   const auto step = [&](int k, const std::string& text) {
     if (!options.quiet) fmt::print("[{}/5] {}\n", k, text), std::fflush(stdout);
   };

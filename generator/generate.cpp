@@ -437,6 +437,21 @@ std::string overflow_words(const Program<T>& program, const Model<double>& model
                          : std::string("is not finite"));
 }
 
+/// Why an algorithm's code in T cannot be generated: its values overflow at typical states.
+template <class T>
+std::string typical_overflow_text(const Robot& robot, const Model<double>& model,
+                                  const Program<T>& program, const Range& typical) {
+  const char* scalar = std::is_same_v<T, float> ? "float" : "double";
+  return fmt::format(
+      "{}: {} overflows in {} at typical states (|v| up to 10, |a| and |tau| up to 100, "
+      "docs/numerics.md): {}, beyond {}'s largest number {:.2g}, so that its outputs are "
+      "infinite, NaN or wrong; the robot's masses, lengths or inertias are too large or too "
+      "small for {}{}, or leave {} out (--algorithms)",
+      robot.path, program.algorithm, scalar, overflow_words(program, model, typical), scalar,
+      static_cast<long double>(std::numeric_limits<T>::max()), scalar,
+      std::is_same_v<T, float> ? " (generate double: --scalar double)" : "", program.algorithm);
+}
+
 /// What one algorithm's values reach at the sampled states (range.hpp), for the banner.
 struct AlgorithmRange {
   Algorithm algorithm;
@@ -455,14 +470,7 @@ AlgorithmRange check_range(const Robot& robot, const Model<double>& model,
   AlgorithmRange range{program.algorithm, estimate_range(program, model), ""};
   const std::string advice = std::is_same_v<T, float> ? " (generate double: --scalar double)" : "";
   if (range.estimate.typical.overflow >= 0)
-    throw InputError(fmt::format(
-        "{}: {} overflows in {} at typical states (|v| up to 10, |a| and |tau| up to 100, "
-        "docs/numerics.md): {}, beyond {}'s largest number {:.2g}, so that its outputs are "
-        "infinite, NaN or wrong; the robot's masses, lengths or inertias are too large or too "
-        "small for {}{}, or leave {} out (--algorithms)",
-        robot.path, program.algorithm, scalar,
-        overflow_words(program, model, range.estimate.typical), scalar, largest, scalar, advice,
-        program.algorithm));
+    throw InputError(typical_overflow_text(robot, model, program, range.estimate.typical));
   if (range.estimate.extreme.overflow >= 0) {
     range.extreme_overflow = overflow_words(program, model, range.estimate.extreme);
     warnings.push_back(fmt::format(
@@ -870,6 +878,16 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba,
     text += fmt::format("\n  {} model constants lie outside float's normal range",
                         c.float_unrepresentable);
   return text;
+}
+
+std::string typical_overflow(const Robot& robot, const Algorithm& a, bool single) {
+  const auto in = [&]<class T>(T) {
+    const Program<T> program = trace<T>(a, robot.model, true, default_call_kernels_from, true);
+    const Range typical = estimate_range(program, robot.model).typical;
+    return typical.overflow < 0 ? std::string()
+                                : typical_overflow_text(robot, robot.model, program, typical);
+  };
+  return single ? in(0.0f) : in(0.0);
 }
 
 Generated generate(const Robot& robot, const GenerateOptions& options) {

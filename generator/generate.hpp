@@ -116,4 +116,9 @@ bool uses_frames(const Algorithm& a);
 /// (range.hpp); warns when they do at extreme states.
 Generated generate(const Robot& robot, const GenerateOptions& options);
 
+/// Why generate refuses algorithm a in float (single) or double for this robot because its
+/// values overflow at typical states (range.hpp), in words, or "" when they do not: dyngen
+/// report leaves such algorithms out of its float variants.
+std::string typical_overflow(const Robot& robot, const Algorithm& a, bool single);
+
 }  // namespace dyngen::gen

@@ -17,6 +17,7 @@
 #include "eval.hpp"
 #include "firmware_report.hpp"
 #include "generate.hpp"
+#include "process.hpp"
 #include "report.hpp"
 
 using namespace dyngen;
@@ -36,7 +37,8 @@ Vec3<double> parse_gravity(const std::string& text) {
       throw InputError(fmt::format("--gravity {}: '{}' is not a finite number", text, item));
     g.push_back(x);
   }
-  if (g.size() != 3) throw InputError(fmt::format("--gravity {}: expected three numbers x,y,z", text));
+  if (g.size() != 3)
+    throw InputError(fmt::format("--gravity {}: expected three numbers x,y,z", text));
   return {g[0], g[1], g[2]};
 }
 
@@ -519,7 +521,8 @@ int eval_main(int argc, char** argv) {
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen eval", [&] {
     const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    for (const std::string& w : robot.warnings)
+      fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
     evaluate(robot.model, states, stdout, {derivatives, !flags.frames.empty()});
   });
 }
@@ -563,10 +566,11 @@ int report_main(int argc, char** argv) {
     options.algorithms = parse_algorithms(algorithms, algorithm_names());
     options.package_dir = package_dir();
     options.command = "dyngen report";
-    for (int k = 1; k < argc; ++k) options.command += " " + std::string(argv[k]);
+    for (int k = 1; k < argc; ++k) options.command += " " + shell_word(argv[k]);
     if (!options.quiet) fmt::print("dyngen {} report: reading {}\n", version, input);
     const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    for (const std::string& w : robot.warnings)
+      fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
     options.model_flags =
         flags.text() + frames_text(robot, flags, options.algorithms, "dyngen report");
     make_report(robot, options, output);
@@ -604,10 +608,11 @@ int firmware_report_main(int argc, char** argv) {
   const int error = run_reporting_errors("dyngen firmware-report", [&] {
     code.check_options();
     options.command = "dyngen firmware-report";
-    for (int k = 1; k < argc; ++k) options.command += " " + std::string(argv[k]);
+    for (int k = 1; k < argc; ++k) options.command += " " + shell_word(argv[k]);
     if (!options.quiet) fmt::print("dyngen {} firmware-report: reading {}\n", version, input);
     const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    for (const std::string& w : robot.warnings)
+      fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
     options.generate = code.options(robot, flags, "dyngen firmware-report");
     const std::vector<std::string> failed = make_firmware_report(robot, options, output);
     for (const std::string& f : failed)
@@ -659,7 +664,8 @@ int main(int argc, char** argv) {
     check_output_dir(output, force);
     if (!quiet) fmt::print("dyngen {}: reading {}\n", version, input);
     const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    for (const std::string& w : robot.warnings)
+      fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
     GenerateOptions options = code.options(robot, flags, "dyngen");
     if (app.count("--measure") + app.count("--no-measure") > 0) options.measure = measure;
 
@@ -686,7 +692,8 @@ int main(int argc, char** argv) {
     }
     const Generated generated = generate(robot, options);
     write_package(output, generated.files, force);
-    for (const std::string& w : generated.warnings) fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    for (const std::string& w : generated.warnings)
+      fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
 
     if (!quiet) {
       fmt::print("operations per call, generated vs runtime (add+sub, mul, div, neg, sin, cos):\n");

@@ -9,7 +9,8 @@
 
 namespace dyngen::gen {
 
-/// Text for a C, C++, CMake or gnuplot comment, a console message or a Markdown line: printable
+/// Text for a C, C++, CMake or gnuplot comment, a console message, or inside markdown_code's
+/// and markdown_block's fences (not bare Markdown, where it could still be markup): printable
 /// ASCII and valid UTF-8 as they are, except that every control character, DEL, C1 control,
 /// Unicode line or paragraph separator (U+0085, U+2028, U+2029) and invalid byte becomes
 /// \xNN (\u2028 for the separators), a backslash becomes \x5c (so that no line ends in one,
@@ -27,9 +28,9 @@ std::string string_literal(std::string_view text);
 /// before a name that starts with "dyngen" (the project's own names) or "cmake" followed by
 /// nothing or "_" (CMake's), in any case; "_robot" after a C or C++ keyword, what harnesses
 /// declare beside the package (main, sh_write), a macro that builds define (NDEBUG, DEBUG), and a
-/// name that the headers which generated files include
-/// define as a macro or declare at global scope, or define as one of the name's c_names
-/// (generator/reserved_names.txt, which scripts/reserved_names.py makes by compiling them); and
+/// name that the headers which generated files include define as a macro or declare at global
+/// scope, or define as one of the name's c_names (generator/reserved_names.txt, which
+/// scripts/reserved_names.py makes by compiling them); and
 /// at most max_identifier characters (a longer result keeps its start and gets a hash of the
 /// whole name, so that different long names stay different).
 std::string identifier(std::string_view name);

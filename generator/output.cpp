@@ -268,14 +268,6 @@ void check_name_lengths(const fs::path& target, const std::string& dir) {
                                   dir, part.string().size(), longest, part.string()));
 }
 
-/// "a, b, c and 4 more"
-std::string listed(const std::vector<std::string>& names) {
-  std::string text;
-  for (std::size_t k = 0; k < names.size() && k < 3; ++k)
-    text += (k == 0 ? "" : ", ") + names[k];
-  return names.size() > 3 ? fmt::format("{} and {} more", text, names.size() - 3) : text;
-}
-
 Write how_to_write(const fs::path& target, const std::string& dir, bool force) {
   std::error_code error;
   const fs::file_status status = fs::status(target, error);
@@ -328,19 +320,29 @@ void write_package(const std::string& dir, const std::vector<GeneratedFile>& fil
   }
 }
 
-bool holds_only(const fs::path& dir, const std::vector<std::string>& files,
-                const std::vector<std::string>& folders) {
-  if (!fs::exists(dir)) return true;
+std::vector<std::string> foreign_entries(const fs::path& dir, const std::vector<std::string>& files,
+                                         const std::vector<std::string>& folders) {
+  if (!fs::exists(dir)) return {};
   if (!fs::is_directory(dir))
     throw FileError(fmt::format("{}: exists and is not a directory", dir.string()));
+  std::vector<std::string> foreign;
   for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
-    std::string name = e.path().filename().string();
-    if (e.is_directory() && std::find(folders.begin(), folders.end(), name) != folders.end())
-      continue;
-    if (name.ends_with(".tmp")) name.resize(name.size() - 4);
-    if (std::find(files.begin(), files.end(), name) == files.end()) return false;
+    const std::string name = e.path().filename().string();
+    const bool folder = e.is_directory();
+    if (folder && std::find(folders.begin(), folders.end(), name) != folders.end()) continue;
+    const std::string whole = name.ends_with(".tmp") ? name.substr(0, name.size() - 4) : name;
+    if (folder || std::find(files.begin(), files.end(), whole) == files.end())
+      foreign.push_back(folder ? name + "/" : name);
   }
-  return true;
+  std::sort(foreign.begin(), foreign.end());
+  return foreign;
+}
+
+std::string listed(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t k = 0; k < names.size() && k < 3; ++k)
+    text += (k == 0 ? "" : ", ") + names[k];
+  return names.size() > 3 ? fmt::format("{} and {} more", text, names.size() - 3) : text;
 }
 
 }  // namespace dyngen::gen

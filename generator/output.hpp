@@ -37,11 +37,16 @@ bool is_dyngen_package(const std::filesystem::path& dir);
 void write_package(const std::string& dir, const std::vector<GeneratedFile>& files,
                    bool force = false);
 
-/// Whether a command that writes `files` (each whole: a leftover NAME.tmp counts as NAME) and
-/// works in `folders` may write into dir without --force: dir is new, empty, or holds only
-/// those. FileError when dir is not a directory.
-bool holds_only(const std::filesystem::path& dir, const std::vector<std::string>& files,
-                const std::vector<std::string>& folders);
+/// What dir holds besides what a command that writes `files` (each whole: a leftover NAME.tmp
+/// counts as NAME) and works in `folders` writes, sorted (folders with a trailing /): the entries
+/// that keep it from writing into dir without --force. None when dir does not exist. FileError
+/// when dir is not a directory.
+std::vector<std::string> foreign_entries(const std::filesystem::path& dir,
+                                         const std::vector<std::string>& files,
+                                         const std::vector<std::string>& folders);
+
+/// The first names and how many more: "a, b, c and 4 more".
+std::string listed(const std::vector<std::string>& names);
 
 /// Throws what write_package would about dir (an empty path, a file, a directory it may not
 /// write into), so that a command can refuse before it works.

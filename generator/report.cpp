@@ -37,24 +37,36 @@ bool with_ldlt(const std::vector<Algorithm>& algorithms) {
   return has(algorithms, "aba") && has(algorithms, "crba") && has(algorithms, "rnea");
 }
 
-/// The algorithms generated in float: all but those that divide by ABA's pivots where the float
-/// model moves no inertia at some joint.
-std::vector<Algorithm> float_algorithms(const Robot& robot, const std::vector<Algorithm>& all) {
-  if (joints_blocking_aba_in_float(robot.model).empty()) return all;
-  std::vector<Algorithm> kept;
-  for (const Algorithm& a : all)
-    if (!algorithm_spec(a).divides_by_pivots) kept.push_back(a);
-  return kept;
+}  // namespace
+
+FloatPlan float_plan(const Robot& robot, const std::vector<Algorithm>& all) {
+  const std::vector<int> blocking = joints_blocking_aba_in_float(robot.model);
+  FloatPlan plan;
+  for (const Algorithm& a : all) {
+    if (!blocking.empty() && algorithm_spec(a).divides_by_pivots) {
+      std::vector<std::string> joints;
+      for (const int i : blocking) joints.push_back(robot.model.joint_name[i]);
+      plan.left_out.push_back({{"algorithm", a}, {"reason", "pivots"}, {"joints", joints}});
+    } else if (const std::string why = typical_overflow(robot, a, true); !why.empty()) {
+      plan.left_out.push_back({{"algorithm", a}, {"reason", "overflow"}, {"detail", why}});
+    } else {
+      plan.kept.push_back(a);
+    }
+  }
+  return plan;
 }
+
+namespace {
 
 /// The generated code of one variant into dir/harness/<variant>; returns generation's
 /// conditioning estimate.
 numerics::Conditioning write_variant(const Robot& robot, const ReportOptions& options,
+                                     const std::vector<Algorithm>& algorithms,
                                      const std::string& name, bool single, const fs::path& dir,
                                      bool with_model) {
   GenerateOptions g;
   g.name = name;
-  g.algorithms = single ? float_algorithms(robot, options.algorithms) : options.algorithms;
+  g.algorithms = algorithms;
   g.single_precision = single;
   g.options_text = options.model_flags;
   const Generated generated = generate(robot, g);
@@ -90,10 +102,11 @@ std::string harness_variants(const std::vector<Algorithm>& algorithms,
     for (std::size_t k = 0; k < spec.inputs.size(); ++k)
       arguments += fmt::format("{}x[{}]", k ? ", " : "", k);
     for (std::size_t k = 0; k < spec.outputs.size(); ++k) arguments += fmt::format(", y[{}]", k);
-    const auto generated = [&](const char* scalar, const std::string& ns, const std::string& label) {
-      return fmt::format(
-          "add<{0}>(\"{1}\", \"{2}\", [](const {0}* const* x, {0}* const* y) {{ {3}::{1}({4}); }});\n",
-          scalar, a, label, ns, arguments);
+    const auto generated = [&](const char* scalar, const std::string& ns,
+                               const std::string& label) {
+      return fmt::format("add<{0}>(\"{1}\", \"{2}\", [](const {0}* const* x, {0}* const* y) {{ "
+                         "::{3}::{1}({4}); }});\n",
+                         scalar, a, label, ns, arguments);
     };
     text += fmt::format("  add_runtime<double>(\"{}\");\n", a);
     text += "  " + generated("double", name, "generated double");
@@ -103,11 +116,14 @@ std::string harness_variants(const std::vector<Algorithm>& algorithms,
     if (std::find(in_float.begin(), in_float.end(), a) != in_float.end())
       text += "  " + generated("float", name + "_float", "generated float");
     if (a == "aba" && with_ldlt(algorithms))
-      for (const auto& [scalar, ns] : {std::pair{"double", name}, std::pair{"float", name + "_float"}})
+      for (const auto& [scalar, ns] :
+           {std::pair{"double", name}, std::pair{"float", name + "_float"}})
         text += fmt::format(
-            "  add<{0}>(\"aba\", \"generated CRBA+LDLT {0}\", [](const {0}* const* x, {0}* const* y) {{\n"
-            "    ldlt_forward_dynamics<{0}>({1}::nv, {1}::crba, {1}::rnea, x[0], x[1], x[2], y[0]);\n"
-            "  }});\n",
+            "  add<{0}>(\"aba\", \"generated CRBA+LDLT {0}\",\n"
+            "           [](const {0}* const* x, {0}* const* y) {{\n"
+            "             ldlt_forward_dynamics<{0}>(::{1}::nv, ::{1}::crba, ::{1}::rnea, x[0],\n"
+            "                                        x[1], x[2], y[0]);\n"
+            "           }});\n",
             scalar, ns);
   }
   return text;
@@ -282,18 +298,26 @@ std::string report_markdown(const Robot& robot, const ReportOptions& options,
       robot.sha256, robot.model.nv, robot.model.nq,
       options.model_flags.empty() ? "" : ", options " + markdown_code(options.model_flags),
       version, markdown_block(conditioning_text(c, with_pivots)));
-  const std::vector<Algorithm> in_float = float_algorithms(robot, options.algorithms);
-  std::string left_out, joints;
-  for (const Algorithm& a : options.algorithms)
-    if (!has(in_float, a)) left_out += (left_out.empty() ? "" : ", ") + a;
-  for (const int i : joints_blocking_aba_in_float(robot.model))
-    joints += (joints.empty() ? "" : ", ") + markdown_code(robot.model.joint_name[i]);
-  if (!left_out.empty())
+  std::string pivots, joints;
+  for (const nlohmann::json& left : report.value("float_left_out", nlohmann::json::array())) {
+    const std::string a = left["algorithm"].get<std::string>();
+    if (left["reason"] == "overflow") {
+      summary += fmt::format("\n\nNo generated float {}: its values overflow float, so it cannot "
+                             "be generated: {}",
+                             a, markdown_block(left["detail"].get<std::string>()));
+      continue;
+    }
+    pivots += (pivots.empty() ? "" : ", ") + a;
+    joints.clear();
+    for (const nlohmann::json& j : left["joints"])
+      joints += (joints.empty() ? "" : ", ") + markdown_code(j.get<std::string>());
+  }
+  if (!pivots.empty())
     summary += fmt::format(
         "\n\nNo generated float ABA ({}): once the model's constants are rounded to float, these "
         "joints move no inertia, so it cannot be generated (the runtime's float ABA divides by "
         "zero there): {}.",
-        left_out, joints);
+        pivots, joints);
   return fill("report.md.in",
               {{"robot", markdown_code(robot.name)},
                {"summary", summary},
@@ -326,25 +350,27 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   const std::string name = identifier(robot.name);
   const fs::path out_dir(dir);
   const fs::path work = out_dir / "harness";
-  if (!options.force &&
-      !holds_only(out_dir, {std::begin(report_files), std::end(report_files)}, {"harness"}))
+  if (const std::vector<std::string> foreign =
+          foreign_entries(out_dir, {std::begin(report_files), std::end(report_files)}, {"harness"});
+      !options.force && !foreign.empty())
     throw FileError(fmt::format(
-        "{}: exists and holds files that dyngen report did not write; it writes only into a new "
-        "or empty directory or over an earlier report. Choose another directory, or give --force "
-        "to write into it (its report files and harness/ are replaced, the rest kept).",
-        dir));
+        "{}: exists and holds files that dyngen report did not write ({}); it writes only into a "
+        "new or empty directory or over an earlier report. Choose another directory, or give "
+        "--force to write into it (its report files and harness/ are replaced, the rest kept).",
+        dir, listed(foreign)));
   fs::create_directories(work);
   const auto step = [&](int k, const std::string& text) {
     if (!options.quiet) fmt::print("[{}/5] {}\n", k, text), std::fflush(stdout);
   };
 
-  const std::vector<Algorithm> in_float = float_algorithms(robot, options.algorithms);
   step(1, "generating the code: double, float, double for FMA, double for fast-math");
-  const numerics::Conditioning c =
-      write_variant(robot, options, name, false, work / "double", true);
-  write_variant(robot, options, name + "_float", true, work / "float", false);
-  write_variant(robot, options, name + "_fma", false, work / "fma", false);
-  write_variant(robot, options, name + "_fastmath", false, work / "fastmath", false);
+  const std::vector<Algorithm>& all = options.algorithms;
+  const FloatPlan in_float = float_plan(robot, all);
+  const numerics::Conditioning c = write_variant(robot, options, all, name, false, work / "double",
+                                                 true);
+  write_variant(robot, options, in_float.kept, name + "_float", true, work / "float", false);
+  write_variant(robot, options, all, name + "_fma", false, work / "fma", false);
+  write_variant(robot, options, all, name + "_fastmath", false, work / "fastmath", false);
   const std::string banner = banner_text(robot);
   write_file(work / "CMakeLists.txt",
              fill("report_CMakeLists.txt.in", {{"banner", "# " + banner},
@@ -359,7 +385,7 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
                   {{"banner", "// " + banner},
                    {"name", name},
                    {"robot", safe_text(robot.name)},
-                   {"variants", harness_variants(options.algorithms, in_float, name)}}));
+                   {"variants", harness_variants(options.algorithms, in_float.kept, name)}}));
 
   step(2, fmt::format("configuring the harness in {}", work.string()));
   const fs::path build = work / "build";
@@ -385,6 +411,7 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   step(5, "writing the report");
   nlohmann::json measured;
   std::ifstream(results_path) >> measured;
+  measured["float_left_out"] = in_float.left_out;
   write_report(robot, options, c, measured, dir);
 }
 

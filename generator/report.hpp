@@ -34,15 +34,26 @@ struct ReportOptions {
 inline constexpr const char* report_files[] = {"report.md", "report.json", "report.gp",
                                                "report.svg"};
 
+/// The algorithms dyngen report generates in float, and the others with why, as report.json's
+/// "float_left_out" holds them: {"algorithm", "reason": "pivots", "joints": the joints that move
+/// no inertia once the model is rounded to float} or {"algorithm", "reason": "overflow",
+/// "detail": where its values overflow float at typical states}.
+struct FloatPlan {
+  std::vector<Algorithm> kept;
+  nlohmann::json left_out = nlohmann::json::array();
+};
+FloatPlan float_plan(const Robot& robot, const std::vector<Algorithm>& all);
+
 /// Generates the variants, builds and runs the harness in dir/harness, and writes the report
 /// files into dir, each whole or not at all. Throws InputError for a robot without ABA when
 /// ABA is asked for, and std::runtime_error when a build or run fails (with its log's end).
 void make_report(const Robot& robot, const ReportOptions& options, const std::string& dir);
 
 /// The last step of make_report: writes the report files into dir from what the harness
-/// measured (its results.json) and the conditioning estimate, each whole or not at all, prints
-/// the tables and the files' paths (unless options.quiet), and returns the paths. The plot is drawn when gnuplot is installed (its log in
-/// dir/harness/plot.log).
+/// measured (its results.json, with float_plan's "float_left_out") and the conditioning
+/// estimate, each whole or not at all, prints the tables and the files' paths (unless
+/// options.quiet), and returns the paths. The plot is drawn when gnuplot is installed (its log
+/// in dir/harness/plot.log).
 std::vector<std::string> write_report(const Robot& robot, const ReportOptions& options,
                                       const numerics::Conditioning& c, nlohmann::json measured,
                                       const std::string& dir);

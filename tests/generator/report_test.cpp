@@ -6,12 +6,15 @@
 // MPFR reference) predicts; and times are positive. And every text a hostile name reaches in
 // the reports (Markdown, JSON, gnuplot, SVG) shows it as written, and runs nothing.
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include "dyngen/crba.hpp"
+#include "dyngen/rnea.hpp"
 #include "files.hpp"
 #include "report.hpp"
 
@@ -22,6 +25,7 @@ using dyngen::test::read;
 using dyngen::test::run_dyngen;
 using dyngen::test::ScratchTest;
 using dyngen::test::shell_quoted;
+using dyngen::test::snapshot;
 
 const std::string models = DYNGEN_TEST_MODELS;
 
@@ -154,6 +158,12 @@ TEST_F(Report, MeasuresEveryVariantOfEveryAlgorithm) {
   const nlohmann::json report = nlohmann::json::parse(read(out / "report.json"));
   EXPECT_EQ(report["states"], 40);
   EXPECT_EQ(report["robot"], json_name(more, "2dof_planar"));  // the name in the URDF
+  // the command line as a shell takes it back: the file's name quoted, the plain words not
+  EXPECT_NE(report["command"].get<std::string>().find("dyngen report " +
+                                                      shell_quoted(robot.string()) + " -o "),
+            std::string::npos)
+      << report["command"];
+  EXPECT_NE(report["command"].get<std::string>().find(" --states 40 "), std::string::npos);
   const std::string markdown = read(out / "report.md");
   expect_only_in_code(markdown, {"`touch ", "$(touch ", "<b>x</b>", "\\x0a# line", "<i>\\x0a.urdf"});
   const double aba_loss = std::pow(10.0, report["conditioning"]["aba_digits_lost"].get<double>());
@@ -189,13 +199,16 @@ TEST_F(Report, MeasuresEveryVariantOfEveryAlgorithm) {
 
 TEST_F(Report, OnlyTheRequestedAlgorithmsAndNonFiniteOutputs) {
   // the tip's inertia (1e-48 kg m^2) rounds to zero in float: the runtime's float ABA divides
-  // by zero, and no float ABA can be generated
-  const std::filesystem::path out = dir / "report";
-  const CliResult r =
-      run_dyngen({"report", models + "/coverage/tiny_tip.yaml", "-o", out.string(), "--algorithms",
-                  "rnea,aba", "--states", "10", "--min-time", "0.01", "--repetitions", "1",
-                  "--quiet"},
-                 dir);
+  // by zero, and no float ABA can be generated. The robot is named "report", like the harness's
+  // own namespace once was: the package's namespace and the harness's stay apart.
+  std::string spec = read(models + "/coverage/tiny_tip.yaml");
+  spec.replace(spec.find("name: tiny_tip"), 14, "name: report");
+  const std::filesystem::path robot = dir / "report.yaml", out = dir / "report";
+  std::ofstream(robot) << spec;
+  const CliResult r = run_dyngen({"report", robot.string(), "-o", out.string(), "--algorithms",
+                                  "rnea,aba", "--states", "10", "--min-time", "0.01",
+                                  "--repetitions", "1", "--quiet"},
+                                 dir);
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_EQ(r.out, "") << "--quiet prints nothing";
   const nlohmann::json report = nlohmann::json::parse(read(out / "report.json"));
@@ -250,12 +263,23 @@ TEST_F(Report, ShowsHostileNamesAsWrittenAndRunsNothing) {
   c.pivot_joint = "j\n```\n# escaped the block <b>";  // a joint name that would close a fence
   const std::filesystem::path out = dir / "report";
   std::filesystem::create_directories(out);
-  write_report(robot, options, c, made_up_measurements({"rnea", "aba"}), out.string());
+  // and in why generated float leaves an algorithm out: a joint's name, a link's in the detail
+  nlohmann::json measured = made_up_measurements({"rnea", "aba"});
+  measured["float_left_out"] = {
+      {{"algorithm", "aba"}, {"reason", "pivots"}, {"joints", {"j <i>pivot</i>"}}},
+      {{"algorithm", "rnea"},
+       {"reason", "overflow"},
+       {"detail", "rnea overflows in float at link '<u>l\n```\n# closed</u>'"}}};
+  write_report(robot, options, c, measured, out.string());
   expect_nothing_ran(dir);
 
   const std::string markdown = read(out / "report.md");
   expect_only_in_code(markdown, {"`touch ", "$(touch ", "<b>x</b>", "&amp;", "<script>",
-                                 "<img src=x>", "escaped the block"});
+                                 "<img src=x>", "escaped the block", "<i>pivot</i>", "<u>l"});
+  EXPECT_NE(markdown.find("No generated float ABA (aba)"), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("No generated float rnea: its values overflow float"),
+            std::string::npos)
+      << markdown;
   // safe_text's escapes: a name stays on its line
   EXPECT_NE(markdown.find("evil\\x0amessage(FATAL_ERROR injected)"), std::string::npos);
   EXPECT_EQ(markdown.find("\n# z"), std::string::npos);
@@ -308,6 +332,56 @@ TEST_F(Report, RefusesAbaOnMasslessJointsAndWritesNothing) {
   EXPECT_NE(r.err.find("--lock-massless"), std::string::npos) << r.err;
   for (const char* f : {"report.md", "report.json", "report.gp", "report.svg"})
     EXPECT_FALSE(std::filesystem::exists(out / f)) << f;
+}
+
+// A directory that holds files of someone else's: both reports refuse it, name what is in the way
+// and leave it as it was
+TEST_F(Report, RefusesADirectoryOfOtherFilesAndNamesThem) {
+  const std::filesystem::path out = dir / "mine";
+  std::filesystem::create_directories(out / "notes");
+  std::ofstream(out / "notes.txt") << "mine";
+  std::ofstream(out / "report.md") << "an earlier report's";
+  const auto before = snapshot(out);
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"report", models + "/double_pendulum.urdf", "-o", out.string()},
+        {"firmware-report", models + "/double_pendulum.urdf", "-o", out.string(), "--target",
+         "cortex-m4f"}}) {
+    const CliResult r = run_dyngen(command, dir);
+    EXPECT_EQ(r.status, 1) << command[0];
+    EXPECT_NE(r.err.find(out.string() + ": exists and holds files that dyngen " + command[0] +
+                         " did not write (notes.txt, notes/);"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(snapshot(out), before) << command[0];
+  }
+}
+
+// tests/generator/bad/float_overflow_typical.yaml's values overflow float at typical states:
+// the report leaves RNEA and ABA out of generated float and says where they overflow, and keeps
+// CRBA (M is q's alone, within float). The runtime in float agrees: at q = 0 with small v and a,
+// its tau is not finite and its M is.
+TEST(ReportFloatPlan, LeavesOutWhatOverflowsFloatAtTypicalStates) {
+  const dyngen::gen::Robot robot =
+      dyngen::gen::load_robot(std::string(DYNGEN_TEST_BAD) + "/float_overflow_typical.yaml");
+  const dyngen::gen::FloatPlan plan = dyngen::gen::float_plan(robot, {"rnea", "crba", "aba"});
+  EXPECT_EQ(plan.kept, std::vector<std::string>{"crba"});
+  ASSERT_EQ(plan.left_out.size(), 2u) << plan.left_out.dump();
+  for (const nlohmann::json& left : plan.left_out) {
+    EXPECT_EQ(left["reason"], "overflow");
+    EXPECT_NE(left["detail"].get<std::string>().find(left["algorithm"].get<std::string>() +
+                                                     " overflows in float at typical states"),
+              std::string::npos)
+        << left["detail"];
+  }
+  const dyngen::Model<float> model = robot.model.cast<float>();
+  dyngen::Workspace<float> ws(model);
+  const std::vector<float> q(2, 0.0f), v(2, 1.0f), a(2, 1.0f);
+  std::vector<float> tau(2), M(4);
+  dyngen::rnea<float>(model, ws, q, v, a, tau);
+  dyngen::crba<float>(model, ws, q, M);
+  EXPECT_FALSE(std::isfinite(tau[0]) && std::isfinite(tau[1]));
+  for (const float m : M) EXPECT_TRUE(std::isfinite(m));
+  EXPECT_TRUE(dyngen::gen::float_plan(robot, {"crba"}).left_out.empty());
 }
 
 }  // namespace
