@@ -37,6 +37,11 @@ bool with_ldlt(const std::vector<Algorithm>& algorithms) {
   return has(algorithms, "aba") && has(algorithms, "crba") && has(algorithms, "rnea");
 }
 
+/// Whether the CRBA+LDLT variant can be built from these generated algorithms.
+bool with_ldlt_in(const std::vector<Algorithm>& generated) {
+  return has(generated, "crba") && has(generated, "rnea");
+}
+
 }  // namespace
 
 FloatPlan float_plan(const Robot& robot, const std::vector<Algorithm>& all) {
@@ -115,16 +120,19 @@ std::string harness_variants(const std::vector<Algorithm>& algorithms,
     text += fmt::format("  add_runtime<float>(\"{}\");\n", a);
     if (std::find(in_float.begin(), in_float.end(), a) != in_float.end())
       text += "  " + generated("float", name + "_float", "generated float");
-    if (a == "aba" && with_ldlt(algorithms))
-      for (const auto& [scalar, ns] :
-           {std::pair{"double", name}, std::pair{"float", name + "_float"}})
-        text += fmt::format(
-            "  add<{0}>(\"aba\", \"generated CRBA+LDLT {0}\",\n"
-            "           [](const {0}* const* x, {0}* const* y) {{\n"
-            "             ldlt_forward_dynamics<{0}>(::{1}::nv, ::{1}::crba, ::{1}::rnea, x[0],\n"
-            "                                        x[1], x[2], y[0]);\n"
-            "           }});\n",
-            scalar, ns);
+    if (a != "aba" || !with_ldlt(algorithms)) continue;
+    const auto ldlt = [](const char* scalar, const std::string& ns) {
+      return fmt::format(
+          "  add<{0}>(\"aba\", \"generated CRBA+LDLT {0}\",\n"
+          "           [](const {0}* const* x, {0}* const* y) {{\n"
+          "             ldlt_forward_dynamics<{0}>(::{1}::nv, ::{1}::crba, ::{1}::rnea, x[0],\n"
+          "                                        x[1], x[2], y[0]);\n"
+          "           }});\n",
+          scalar, ns);
+    };
+    text += ldlt("double", name);
+    // in float only where float's CRBA and RNEA are generated
+    if (with_ldlt_in(in_float)) text += ldlt("float", name + "_float");
   }
   return text;
 }
@@ -303,7 +311,7 @@ std::string report_markdown(const Robot& robot, const ReportOptions& options,
     const std::string a = left["algorithm"].get<std::string>();
     if (left["reason"] == "overflow") {
       summary += fmt::format("\n\nNo generated float {}: its values overflow float, so it cannot "
-                             "be generated: {}",
+                             "be generated:\n\n{}",
                              a, markdown_block(left["detail"].get<std::string>()));
       continue;
     }

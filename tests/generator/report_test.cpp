@@ -5,6 +5,7 @@
 // dynamics stays within the loss that the conditioning estimate (long double ABA pivots, not the
 // MPFR reference) predicts; and times are positive. And every text a hostile name reaches in
 // the reports (Markdown, JSON, gnuplot, SVG) shows it as written, and runs nothing.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -224,6 +225,28 @@ TEST_F(Report, OnlyTheRequestedAlgorithmsAndNonFiniteOutputs) {
     EXPECT_FALSE(v["algorithm"] == "aba" && v["variant"] == "generated float");
 }
 
+// A robot whose float values overflow at typical states everywhere: the report is made, with no
+// generated float variant (CRBA+LDLT float included, which needs float's CRBA and RNEA), and
+// report.json says why each is left out.
+TEST_F(Report, LeavesOutGeneratedFloatThatOverflows) {
+  const std::filesystem::path out = dir / "report";
+  const CliResult r = run_dyngen({"report", std::string(DYNGEN_TEST_BAD) +
+                                      "/float_overflow_typical.yaml", "-o", out.string(),
+                                  "--algorithms", "rnea,crba,aba", "--states", "10",
+                                  "--min-time", "0.01", "--repetitions", "1", "--quiet"},
+                                 dir);
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const nlohmann::json report = nlohmann::json::parse(read(out / "report.json"));
+  ASSERT_EQ(report["float_left_out"].size(), 3u) << report["float_left_out"];
+  for (const nlohmann::json& v : report["results"])
+    EXPECT_TRUE(v["variant"].get<std::string>().find("generated") == std::string::npos ||
+                v["scalar"] == "double")
+        << v;
+  EXPECT_EQ(result(report, "aba", "generated CRBA+LDLT double")["scalar"], "double");
+  EXPECT_NE(read(out / "report.md").find("No generated float crba: its values overflow float"),
+            std::string::npos);
+}
+
 /// What the harness would measure of every variant of each algorithm, made up.
 nlohmann::json made_up_measurements(const std::vector<std::string>& algorithms) {
   nlohmann::json results = nlohmann::json::array();
@@ -266,7 +289,9 @@ TEST_F(Report, ShowsHostileNamesAsWrittenAndRunsNothing) {
   // and in why generated float leaves an algorithm out: a joint's name, a link's in the detail
   nlohmann::json measured = made_up_measurements({"rnea", "aba"});
   measured["float_left_out"] = {
-      {{"algorithm", "aba"}, {"reason", "pivots"}, {"joints", {"j <i>pivot</i>"}}},
+      {{"algorithm", "aba"},
+       {"reason", "pivots"},
+       {"joints", nlohmann::json::array({"j <i>pivot</i>"})}},
       {{"algorithm", "rnea"},
        {"reason", "overflow"},
        {"detail", "rnea overflows in float at link '<u>l\n```\n# closed</u>'"}}};
@@ -340,7 +365,6 @@ TEST_F(Report, RefusesADirectoryOfOtherFilesAndNamesThem) {
   const std::filesystem::path out = dir / "mine";
   std::filesystem::create_directories(out / "notes");
   std::ofstream(out / "notes.txt") << "mine";
-  std::ofstream(out / "report.md") << "an earlier report's";
   const auto before = snapshot(out);
   for (const std::vector<std::string>& command :
        {std::vector<std::string>{"report", models + "/double_pendulum.urdf", "-o", out.string()},
@@ -357,15 +381,15 @@ TEST_F(Report, RefusesADirectoryOfOtherFilesAndNamesThem) {
 }
 
 // tests/generator/bad/float_overflow_typical.yaml's values overflow float at typical states:
-// the report leaves RNEA and ABA out of generated float and says where they overflow, and keeps
-// CRBA (M is q's alone, within float). The runtime in float agrees: at q = 0 with small v and a,
-// its tau is not finite and its M is.
+// the report leaves RNEA, CRBA and ABA out of generated float and says where each overflows.
+// The runtime in float agrees: at q = 0, v = a = 1, its tau and M are not finite. The double
+// pendulum loses nothing.
 TEST(ReportFloatPlan, LeavesOutWhatOverflowsFloatAtTypicalStates) {
   const dyngen::gen::Robot robot =
       dyngen::gen::load_robot(std::string(DYNGEN_TEST_BAD) + "/float_overflow_typical.yaml");
   const dyngen::gen::FloatPlan plan = dyngen::gen::float_plan(robot, {"rnea", "crba", "aba"});
-  EXPECT_EQ(plan.kept, std::vector<std::string>{"crba"});
-  ASSERT_EQ(plan.left_out.size(), 2u) << plan.left_out.dump();
+  EXPECT_TRUE(plan.kept.empty());
+  ASSERT_EQ(plan.left_out.size(), 3u) << plan.left_out.dump();
   for (const nlohmann::json& left : plan.left_out) {
     EXPECT_EQ(left["reason"], "overflow");
     EXPECT_NE(left["detail"].get<std::string>().find(left["algorithm"].get<std::string>() +
@@ -380,8 +404,11 @@ TEST(ReportFloatPlan, LeavesOutWhatOverflowsFloatAtTypicalStates) {
   dyngen::rnea<float>(model, ws, q, v, a, tau);
   dyngen::crba<float>(model, ws, q, M);
   EXPECT_FALSE(std::isfinite(tau[0]) && std::isfinite(tau[1]));
-  for (const float m : M) EXPECT_TRUE(std::isfinite(m));
-  EXPECT_TRUE(dyngen::gen::float_plan(robot, {"crba"}).left_out.empty());
+  EXPECT_FALSE(std::all_of(M.begin(), M.end(), [](float m) { return std::isfinite(m); }));
+
+  const dyngen::gen::Robot pendulum = dyngen::gen::load_robot(models + "/double_pendulum.urdf");
+  const std::vector<std::string> all = {"rnea", "crba", "aba"};
+  EXPECT_EQ(dyngen::gen::float_plan(pendulum, all).kept, all);
 }
 
 }  // namespace
