@@ -474,6 +474,25 @@ struct CodeFlags {
   }
 };
 
+/// The robot file read with the model options, its warnings printed; unless quiet, first
+/// "dyngen VERSION COMMAND: reading FILE" (command: "" for the main one, " report", ...).
+Robot read_robot(const std::string& input, const ModelFlags& flags, const char* command,
+                 bool quiet) {
+  if (!quiet) fmt::print("dyngen {}{}: reading {}\n", version, command, input);
+  Robot robot = load_robot(input, flags.load_options());
+  for (const std::string& w : robot.warnings)
+    fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+  return robot;
+}
+
+/// A subcommand's command line (argv[0] is its name) as a shell reads it back, for a report's
+/// record: "dyngen", the subcommand and each argument, quoted where it must be.
+std::string command_line(int argc, char** argv) {
+  std::string text = "dyngen";
+  for (int k = 0; k < argc; ++k) text += " " + shell_word(argv[k]);
+  return text;
+}
+
 /// Runs a command's work, with its message on stderr after `command: error:`: bad input
 /// (InputError) and files that cannot be read or written (FileError, or the file system's own
 /// error) exit with 1, a failure of dyngen itself with 2.
@@ -520,9 +539,7 @@ int eval_main(int argc, char** argv) {
   flags.add_to(app);
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen eval", [&] {
-    const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings)
-      fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    const Robot robot = read_robot(input, flags, " eval", true);
     evaluate(robot.model, states, stdout, {derivatives, !flags.frames.empty()});
   });
 }
@@ -565,12 +582,8 @@ int report_main(int argc, char** argv) {
   return run_reporting_errors("dyngen report", [&] {
     options.algorithms = parse_algorithms(algorithms, algorithm_names());
     options.package_dir = package_dir();
-    options.command = "dyngen report";
-    for (int k = 1; k < argc; ++k) options.command += " " + shell_word(argv[k]);
-    if (!options.quiet) fmt::print("dyngen {} report: reading {}\n", version, input);
-    const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings)
-      fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    options.command = command_line(argc, argv);
+    const Robot robot = read_robot(input, flags, " report", options.quiet);
     options.model_flags =
         flags.text() + frames_text(robot, flags, options.algorithms, "dyngen report");
     make_report(robot, options, output);
@@ -607,12 +620,8 @@ int firmware_report_main(int argc, char** argv) {
   int status = 0;
   const int error = run_reporting_errors("dyngen firmware-report", [&] {
     code.check_options();
-    options.command = "dyngen firmware-report";
-    for (int k = 1; k < argc; ++k) options.command += " " + shell_word(argv[k]);
-    if (!options.quiet) fmt::print("dyngen {} firmware-report: reading {}\n", version, input);
-    const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings)
-      fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    options.command = command_line(argc, argv);
+    const Robot robot = read_robot(input, flags, " firmware-report", options.quiet);
     options.generate = code.options(robot, flags, "dyngen firmware-report");
     const std::vector<std::string> failed = make_firmware_report(robot, options, output);
     for (const std::string& f : failed)
@@ -662,10 +671,7 @@ int main(int argc, char** argv) {
   return run_reporting_errors("dyngen", [&] {
     code.check_options();
     check_output_dir(output, force);
-    if (!quiet) fmt::print("dyngen {}: reading {}\n", version, input);
-    const Robot robot = load_robot(input, flags.load_options());
-    for (const std::string& w : robot.warnings)
-      fmt::print(stderr, "dyngen: warning: {}\n", safe_text(w, true));
+    const Robot robot = read_robot(input, flags, "", quiet);
     GenerateOptions options = code.options(robot, flags, "dyngen");
     if (app.count("--measure") + app.count("--no-measure") > 0) options.measure = measure;
 

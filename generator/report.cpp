@@ -118,7 +118,7 @@ std::string harness_variants(const std::vector<Algorithm>& algorithms,
     text += "  if (fma) " + generated("double", name + "_fma", "generated double, FMA");
     text += "  " + generated("double", name + "_fastmath", "generated double, fast-math");
     text += fmt::format("  add_runtime<float>(\"{}\");\n", a);
-    if (std::find(in_float.begin(), in_float.end(), a) != in_float.end())
+    if (has(in_float, a))
       text += "  " + generated("float", name + "_float", "generated float");
     if (a != "aba" || !with_ldlt(algorithms)) continue;
     const auto ldlt = [](const char* scalar, const std::string& ns) {
