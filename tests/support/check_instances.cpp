@@ -1,6 +1,7 @@
-// The checks' comparison (dyngen/check.hpp) for double and float, compiled once for the hundred
-// generated packages whose checks the tests build, which declare it extern (DYNGEN_CHECK_EXTERN).
-#include <dyngen/check.hpp>
+// The checks' comparison (dyngen/check_impl.hpp) for double and float, compiled once for the
+// hundred generated packages whose checks the tests build, which see only its declarations
+// (DYNGEN_CHECK_EXTERN).
+#include <dyngen/check_impl.hpp>
 
 namespace dyngen::check {
 
