@@ -28,7 +28,6 @@
 #include <gtest/gtest.h>
 
 #include <dyngen/check.hpp>
-#include <dyngen/dyngen.hpp>
 
 #include "planar5_dynamics.hpp"
 #include "planar5_model.hpp"

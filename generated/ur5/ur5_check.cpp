@@ -76,7 +76,6 @@
 #include <gtest/gtest.h>
 
 #include <dyngen/check.hpp>
-#include <dyngen/dyngen.hpp>
 
 #include "ur5_dynamics.hpp"
 #include "ur5_batch.hpp"

@@ -28,7 +28,6 @@
 #include <gtest/gtest.h>
 
 #include <dyngen/check.hpp>
-#include <dyngen/dyngen.hpp>
 
 #include "ur5_dynamics.h"
 #include "ur5_model.hpp"
