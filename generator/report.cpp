@@ -383,11 +383,7 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
   write_file(work / "CMakeLists.txt",
              fill("report_CMakeLists.txt.in", {{"banner", "# " + banner},
                                                 {"name", name},
-                                                {"robot", safe_text(robot.name)},
-                                                {"ldlt", with_ldlt(options.algorithms) ? "ldlt.cpp" : ""}}));
-  for (const char* part :
-       {"harness.hpp", "harness.cpp", "runtime.cpp", "ldlt.cpp", "reference.cpp"})
-    write_file(work / part, fill(fmt::format("report_{}.in", part), {{"banner", "// " + banner}}));
+                                                {"robot", safe_text(robot.name)}}));
   write_file(work / "variants.cpp",
              fill("report_variants.cpp.in",
                   {{"banner", "// " + banner},
@@ -401,7 +397,7 @@ void make_report(const Robot& robot, const ReportOptions& options, const std::st
       fmt::format("cmake -S {} -B {} -Ddyngen_DIR={}", shell_quoted(work.string()),
                   shell_quoted(build.string()), shell_quoted(options.package_dir)),
       work / "configure.log", false);
-  step(3, "building the harness (the generated code four ways, and the runtime, in parallel)");
+  step(3, "building the harness (the generated code four ways, in parallel)");
   run_logged("building the harness",
       fmt::format("cmake --build {} -j {}", shell_quoted(build.string()),
                   std::max(1u, std::thread::hardware_concurrency())),

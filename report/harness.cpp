@@ -1,4 +1,3 @@
-@banner@
 // dyngen report's harness. For each algorithm and variant it measures the norm-wise relative
 // error against the MPFR reference (the dyngen runtime on 256-bit numbers) on seeded random
 // states, times the variant with Google Benchmark, and writes the figures as JSON for dyngen
@@ -12,12 +11,13 @@
 #include <functional>
 #include <map>
 #include <type_traits>
+#include <utility>
 
 #include <benchmark/benchmark.h>
 
 #include <dyngen/numerics/random.hpp>
 
-#include "harness.hpp"
+#include "dyngen/report/harness.hpp"
 
 namespace dyngen_report {
 namespace {
@@ -53,6 +53,8 @@ Inputs<S> pack(const std::vector<State>& states, int nq, int nv) {
 /// What every variant works on: the model in both scalar types, a runtime workspace for each,
 /// and the states' inputs. Set up before the variants are registered.
 struct Setting {
+  explicit Setting(dyngen::Model<double> model) : model_double(std::move(model)) {}
+
   dyngen::Model<double> model_double;
   dyngen::Model<float> model_float = model_double.cast<float>();
   dyngen::Workspace<double> ws_double{model_double};
@@ -320,7 +322,7 @@ int main(int argc, char** argv) {
   }
   const int count = std::atoi(argv[1]);
   const unsigned long long seed = std::strtoull(argv[2], nullptr, 10);
-  dyngen_report::setting.reset(new dyngen_report::Setting{dyngen_report::robot_model()});
+  dyngen_report::setting.reset(new dyngen_report::Setting(dyngen_report::robot_model()));
   dyngen_report::Setting& setting = *dyngen_report::setting;
   setting.timed_states = std::max(1, std::min(count, std::atoi(argv[3])));
   setting.min_time = std::atof(argv[4]);

@@ -1,9 +1,8 @@
-@banner@
 // The runtime's algorithms in double and float, compiled with the generated code's exact-math
 // flags, as they are timed against it.
 #include <dyngen/algorithms.hpp>
 
-#include "harness.hpp"
+#include "dyngen/report/harness.hpp"
 
 namespace dyngen_report {
 

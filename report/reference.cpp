@@ -1,9 +1,8 @@
-@banner@
 // The MPFR reference of dyngen report's harness: the runtime's algorithms on mpreal numbers.
 #include <dyngen/dyngen.hpp>
 #include <dyngen/numerics/reference.hpp>
 
-#include "harness.hpp"
+#include "dyngen/report/harness.hpp"
 
 namespace dyngen_report {
 

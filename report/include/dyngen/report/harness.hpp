@@ -1,8 +1,8 @@
-@banner@
-// dyngen report's harness: what its parts share. harness.cpp measures every variant;
+// dyngen report's harness (dyngen::report_harness): report/harness.cpp measures every variant;
 // runtime.cpp and ldlt.cpp hold the runtime's algorithms and CRBA+LDL^T in double and float;
-// reference.cpp the MPFR reference; variants.cpp, the only part written for the robot, its
-// model and the variants. The parts compile in parallel.
+// reference.cpp the MPFR reference. They know no robot, and are compiled once, with dyngen.
+// What dyngen report writes for a robot, variants.cpp, defines the robot's model and its
+// variants (robot_model and add_variants below), and is linked with them.
 #pragma once
 
 #include <functional>

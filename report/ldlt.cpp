@@ -1,10 +1,8 @@
-@banner@
 // Forward dynamics through the generated CRBA and RNEA and Eigen's LDL^T, in double and float,
-// compiled with the generated code's exact-math flags. Apart from the runtime, with which it
-// compiles in parallel: Eigen's LDL^T takes longer to compile than the runtime's algorithms.
+// compiled with the generated code's exact-math flags.
 #include <dyngen/numerics/ldlt.hpp>
 
-#include "harness.hpp"
+#include "dyngen/report/harness.hpp"
 
 namespace dyngen_report {
 
