@@ -47,7 +47,7 @@ run_logged() {
   return "$status"
 }
 
-echo "== building dyngen, the tests and about 110 generated packages (about 13 minutes on 2" \
+echo "== building dyngen, the tests and about 110 generated packages (about 10 minutes on 2" \
      "cores the first time; full output in build/build.log)"
 if ! run_logged build/build.log build cmake --build build -j "$jobs"; then
   echo "the build failed; its last 40 lines (all of it: build/build.log):"
@@ -57,7 +57,7 @@ fi
 warnings=$(grep -c "warning:" build/build.log || true)
 [ "$warnings" -eq 0 ] || echo "$warnings compiler warnings (above; in context: build/build.log)"
 
-echo "== running the tests (about 5 minutes; full output in build/ctest.log)"
+echo "== running the tests (about 4 minutes; full output in build/ctest.log)"
 status=0
 run_logged build/ctest.log test ctest --test-dir build --output-on-failure -j "$jobs" || status=$?
 echo "done in $((SECONDS - start)) s"
