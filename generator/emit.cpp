@@ -572,39 +572,55 @@ std::string output_stores(const Program<T>& program, const Model<double>& model,
   return out;
 }
 
-}  // namespace
+/// What emit_code decides before it prints, as plain data: which nodes are statements, the
+/// sections and how each is computed (in place, by a shared function, in vector lanes), and
+/// the arrays that kernel calls write.
+struct CodePlan {
+  std::vector<bool> live;      // by node: reaches an output
+  std::vector<bool> trig;      // by node: sin or cos of a joint angle, read from trig
+  std::vector<bool> is_op;     // by node: a statement of the body
+  std::vector<Section> sections;
+  std::vector<std::vector<int>> groups;  // by shared function: the sections it computes
+  int w_size = 0;                        // the outputs of the shared functions' sections
+  bool lanes = false;                    // computed in lane blocks (Structure::Lanes)
+  std::vector<LaneBlock> blocks;
+  std::vector<LaneSlot> slot;
+  std::vector<int> order;  // of emission in lanes: node ids, and -1 - b for block b
+  // by kernel call and array it writes: the array's name, and whether it is an output written
+  // in place; by output array: whether a kernel writes it in place
+  std::vector<std::vector<std::string>> call_arrays;
+  std::vector<std::vector<bool>> call_in_place;
+  std::vector<bool> output_in_place;
+};
 
+/// sin and cos of joint angles come precomputed in trig (joint_trig), so that one call of
+/// dyngen_sincos serves every function that takes the same q.
 template <class T>
-EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure,
-                      const Dialect& dialect) {
+std::vector<bool> trig_nodes(const Program<T>& program, const std::vector<bool>& live) {
   const auto& nodes = program.graph.nodes;
-  const std::vector<bool> live = live_nodes(program);
-  const std::string scalar = std::is_same_v<T, float> ? "float" : "double";
-  const std::string type = dialect.batch() ? "lane" : scalar;  // of each computed value
-  const std::string& prefix = program.algorithm;
-
-  // sin and cos of joint angles come precomputed in trig (joint_trig), so that one call of
-  // dyngen_sincos serves every function that takes the same q
-  auto is_trig = [&](const Node<T>& n) {
-    if (n.op != Op::Sin && n.op != Op::Cos) return false;
+  std::vector<bool> trig(nodes.size(), false);
+  for (std::size_t id = 0; id < nodes.size(); ++id) {
+    const Node<T>& n = nodes[id];
+    if (!live[id] || (n.op != Op::Sin && n.op != Op::Cos)) continue;
     const Node<T>& x = nodes[n.a];
     if (x.op != Op::Input || program.graph.inputs[x.input].array != "q")
       throw std::logic_error("internal error: sin or cos of something other than a joint angle");
-    return true;
-  };
-  std::vector<bool> is_op(nodes.size(), false);
-  for (std::size_t id = 0; id < nodes.size(); ++id)
-    is_op[id] = live[id] && nodes[id].op != Op::Const && nodes[id].op != Op::Input &&
-                nodes[id].op != Op::Result && !is_trig(nodes[id]);
+    trig[id] = true;
+  }
+  return trig;
+}
 
-  // Kernel calls: each array a call writes is named once, and an array of the function's
-  // outputs that is exactly one of them is passed to the kernel to write in place
+/// Kernel calls: each array a call writes is named once, and an array of the function's outputs
+/// that is exactly one of them is passed to the kernel to write in place (not in batch code,
+/// whose outputs are stored from lanes).
+template <class T>
+void plan_kernel_arrays(const Program<T>& program, const Dialect& dialect, CodePlan& plan) {
   const std::vector<KernelRecord>& calls = program.graph.calls;
   if (dialect.c() && !calls.empty())
     throw std::logic_error("internal error: a kernel call in C code");
-  std::vector<std::vector<std::string>> call_arrays(calls.size());
-  std::vector<std::vector<bool>> call_in_place(calls.size());
-  std::vector<bool> output_in_place(program.outputs.size(), false);
+  plan.call_arrays.assign(calls.size(), {});
+  plan.call_in_place.assign(calls.size(), {});
+  plan.output_in_place.assign(program.outputs.size(), false);
   for (std::size_t c = 0; c < calls.size(); ++c) {
     const KernelRecord& call = calls[c];
     int first = call.first_result;
@@ -615,211 +631,278 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
       std::size_t offset = 0;
       for (std::size_t a = 0; a < program.outputs.size() && !in_place; ++a) {
         const std::size_t size = program.outputs[a].size;
-        // batch outputs are stored from lanes
-        in_place = !dialect.batch() && size == call.outputs[j] && !output_in_place[a];
+        in_place = !dialect.batch() && size == call.outputs[j] && !plan.output_in_place[a];
         for (std::size_t k = 0; in_place && k < size; ++k)
           in_place = program.stored[offset + k] == first + static_cast<int>(k);
         if (in_place) {
           array = std::string(program.outputs[a].spec.name);
-          output_in_place[a] = true;
+          plan.output_in_place[a] = true;
         }
         offset += size;
       }
-      call_in_place[c].push_back(in_place);
-      call_arrays[c].push_back(array);
+      plan.call_in_place[c].push_back(in_place);
+      plan.call_arrays[c].push_back(array);
       first += static_cast<int>(call.outputs[j]);
     }
   }
-  auto result_name = [&](const Node<T>& n) {
-    const int c = nodes[n.a].a;
-    std::size_t index = static_cast<std::size_t>(n.input);
-    std::size_t j = 0;
-    while (index >= calls[c].outputs[j]) index -= calls[c].outputs[j++];
-    return fmt::format("{}[{}]", call_arrays[c][j], index);
-  };
+}
 
-  // Shared structure: sections of the same shape (a right leg's and a left leg's, a chain's
-  // links) run one function over a table of their constants; the operations and their order
-  // are those of the unrolled code, so the bits are too.
-  std::vector<Section> sections = sections_of(program, is_op);
-  std::vector<LaneBlock> blocks;
-  std::vector<LaneSlot> slot;
-  std::vector<int> order;  // of emission, with lane blocks (schedule_lane_blocks)
-  const long operations = std::count(is_op.begin(), is_op.end(), true);
-  // Auto: lanes where limbs repeat, up to max_lane_function_operations counted with the kernels'
-  // loops, as the banner counts them; else shared from min_shared_function_operations (of the
-  // statements), unrolled below
-  bool lanes = !dialect.c() && !dialect.batch() &&
+/// Lanes where the structure asks for them, or, under Auto, where limbs repeat in a function
+/// of fewer than max_lane_function_operations (counted with the kernels' loops, as the banner
+/// counts them). Filling a vector costs about an instruction a lane, as an operation does: a
+/// block must save at least twice what it fills.
+template <class T>
+void plan_lanes(const Program<T>& program, const Model<double>& model, Structure structure,
+                const Dialect& dialect, CodePlan& plan) {
+  plan.lanes = !dialect.c() && !dialect.batch() &&
                (structure == Structure::Lanes ||
                 (structure == Structure::Auto &&
-                 count_marked(program, live).total() < max_lane_function_operations));
-  if (lanes) {
-    blocks = plan_lane_blocks(program, model, sections);
-    order = schedule_lane_blocks(program, sections, blocks, slot);
-    // filling a vector costs about an instruction a lane, as an operation does: a block must
-    // save at least twice what it fills
-    std::vector<LaneBlock> paying;
-    for (std::size_t b = 0; b < blocks.size(); ++b)
-      if (std::count(blocks[b].in_lanes.begin(), blocks[b].in_lanes.end(), true) >=
-          2 * lane_fills(program, sections, blocks, slot, b))
-        paying.push_back(blocks[b]);
-    if (paying.size() < blocks.size()) {
-      blocks = std::move(paying);
-      order = schedule_lane_blocks(program, sections, blocks, slot);
-    }
-    lanes = structure == Structure::Lanes || !blocks.empty();
+                 count_marked(program, plan.live).total() < max_lane_function_operations));
+  if (!plan.lanes) return;
+  plan.blocks = plan_lane_blocks(program, model, plan.sections);
+  plan.order = schedule_lane_blocks(program, plan.sections, plan.blocks, plan.slot);
+  std::vector<LaneBlock> paying;
+  for (std::size_t b = 0; b < plan.blocks.size(); ++b)
+    if (std::count(plan.blocks[b].in_lanes.begin(), plan.blocks[b].in_lanes.end(), true) >=
+        2 * lane_fills(program, plan.sections, plan.blocks, plan.slot, b))
+      paying.push_back(plan.blocks[b]);
+  if (paying.size() < plan.blocks.size()) {
+    plan.blocks = std::move(paying);
+    plan.order = schedule_lane_blocks(program, plan.sections, plan.blocks, plan.slot);
   }
-  std::vector<std::vector<int>> groups;
-  if (!lanes && (structure == Structure::Shared ||
-                 (structure == Structure::Auto && operations >= min_shared_function_operations))) {
-    std::map<std::string, std::vector<int>> by_shape;
-    for (std::size_t s = 0; s < sections.size(); ++s)
-      if (sections[s].body >= 0) by_shape[sections[s].shape].push_back(static_cast<int>(s));
-    std::map<int, std::vector<int>> by_first;  // numbered in the order the body calls them
-    for (auto& [shape, members] : by_shape)
-      if (members.size() > 1 && sections[members.front()].ops.size() >= min_shared_operations)
-        by_first[members.front()] = members;
-    for (auto& [first, members] : by_first) {
-      for (std::size_t k = 0; k < members.size(); ++k) {
-        sections[members[k]].group = static_cast<int>(groups.size());
-        sections[members[k]].instance = static_cast<int>(k);
-      }
-      groups.push_back(members);
+  plan.lanes = structure == Structure::Lanes || !plan.blocks.empty();
+}
+
+/// Shared structure: sections of the same shape (a right leg's and a left leg's, a chain's
+/// links) run one function over a table of their constants, under Shared, or under Auto from
+/// min_shared_function_operations statements; the operations and their order are those of the
+/// unrolled code, so the bits are too.
+void plan_shared_functions(Structure structure, long operations, CodePlan& plan) {
+  std::vector<Section>& sections = plan.sections;
+  const bool big = operations >= min_shared_function_operations;
+  if (plan.lanes || !(structure == Structure::Shared || (structure == Structure::Auto && big)))
+    return;
+  std::map<std::string, std::vector<int>> by_shape;
+  for (std::size_t s = 0; s < sections.size(); ++s)
+    if (sections[s].body >= 0) by_shape[sections[s].shape].push_back(static_cast<int>(s));
+  std::map<int, std::vector<int>> by_first;  // numbered in the order the body calls them
+  for (auto& [shape, members] : by_shape)
+    if (members.size() > 1 && sections[members.front()].ops.size() >= min_shared_operations)
+      by_first[members.front()] = members;
+  for (auto& [first, members] : by_first) {
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      sections[members[k]].group = static_cast<int>(plan.groups.size());
+      sections[members[k]].instance = static_cast<int>(k);
     }
+    plan.groups.push_back(members);
   }
-  EmittedCode code;
-  code.angles.assign(static_cast<std::size_t>(model.nq), false);
-  for (std::size_t id = 0; id < nodes.size(); ++id)
-    if (live[id] && is_trig(nodes[id]))
-      code.angles[static_cast<std::size_t>(program.graph.inputs[nodes[nodes[id].a].input].index)] =
-          true;
-  code.sections = static_cast<int>(sections.size());
-  code.shared_functions = static_cast<int>(groups.size());
-  int w_size = 0;
-  std::vector<std::string> name(nodes.size());
   for (Section& s : sections) {
     if (s.group < 0) continue;
-    ++code.shared_sections;
-    s.w = w_size;
-    for (std::size_t k = 0; k < s.outputs.size(); ++k)
-      name[s.outputs[k]] = fmt::format("w[{}]", w_size + static_cast<int>(k));
-    w_size += static_cast<int>(s.outputs.size());
+    s.w = plan.w_size;
+    plan.w_size += static_cast<int>(s.outputs.size());
   }
+}
 
-  auto operand = [&](int id) -> std::string {
-    const Node<T>& n = nodes[id];
-    if (n.op == Op::Const) return literal(n.value);
-    if (n.op == Op::Input) {
-      const InputRef& in = program.graph.inputs[n.input];
-      return dialect.batch() ? fmt::format("{}{}", in.array, in.index)
-                             : fmt::format("{}[{}]", in.array, in.index);
-    }
-    if (is_trig(n))
-    {
-      const char* function = n.op == Op::Sin ? "sin" : "cos";
-      const int index = program.graph.inputs[nodes[n.a].input].index;
-      return dialect.batch() ? fmt::format("{}_q{}", function, index)
-                             : fmt::format("{}{}_q[{}]", dialect.trig_member(), function, index);
-    }
-    if (n.op == Op::Result) return result_name(n);
-    return name[id];
-  };
-  // an element of an array of values: in batch code a constant fills every lane
-  auto element = [&](int id) {
-    if (!dialect.batch() || nodes[id].op != Op::Const) return operand(id);
-    std::string copies = operand(id);
-    for (int l = 1; l < dialect.lanes; ++l) copies += ", " + operand(id);
-    return "lane{" + copies + "}";
-  };
-  auto apply = [](Op op, const std::string& a, const std::string& b) {
-    switch (op) {
-      case Op::Neg: return "-" + a;
-      case Op::Add: return a + " + " + b;
-      case Op::Sub: return a + " - " + b;
-      case Op::Mul: return a + " * " + b;
-      case Op::Div: return a + " / " + b;
-      default: return std::string();
-    }
-  };
-  auto expression = [&](const Node<T>& n, auto&& arg) {
-    return apply(n.op, arg(n.a), n.b >= 0 ? arg(n.b) : std::string());
-  };
+template <class T>
+CodePlan plan_code(const Program<T>& program, const Model<double>& model, Structure structure,
+                   const Dialect& dialect) {
+  const auto& nodes = program.graph.nodes;
+  CodePlan plan;
+  plan.live = live_nodes(program);
+  plan.trig = trig_nodes(program, plan.live);
+  plan.is_op.assign(nodes.size(), false);
+  for (std::size_t id = 0; id < nodes.size(); ++id)
+    plan.is_op[id] = plan.live[id] && nodes[id].op != Op::Const && nodes[id].op != Op::Input &&
+                     nodes[id].op != Op::Result && !plan.trig[id];
+  plan_kernel_arrays(program, dialect, plan);
+  plan.sections = sections_of(program, plan.is_op);
+  plan_lanes(program, model, structure, dialect, plan);
+  plan_shared_functions(structure, std::count(plan.is_op.begin(), plan.is_op.end(), true), plan);
+  return plan;
+}
 
-  // the shared functions, each with its constant table
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    const Section& first = sections[groups[g].front()];
-    const std::string fn = fmt::format("{}_shape_{}", prefix, g);
-    std::string users;
-    for (std::size_t k = 0; k < groups[g].size() && k < 6; ++k)
-      users += (k ? ", " : "") + body_label(model, sections[groups[g][k]].body);
-    if (groups[g].size() > 6) users += fmt::format(" and {} more", groups[g].size() - 6);
-    code.helpers += fmt::format(
-        "// {}: {} operations, {} inputs, {} outputs; {}, {} sections: {}\n", fn,
-        first.ops.size(), first.inputs.size(), first.outputs.size(), pass_name(first.pass),
-        groups[g].size(), users);
-    const std::size_t nk = first.constants.size();
-    if (nk > 0) {
-      code.helpers += fmt::format("{} {} {}_k[{}][{}] = {{\n", dialect.table(), scalar, fn,
-                                  groups[g].size(), nk);
-      for (const int member : groups[g]) {
-        std::string row;
-        for (const int c : sections[member].constants)
-          row += (row.empty() ? "" : ", ") + literal(nodes[c].value);
-        code.helpers += fmt::format("    {{{}}},\n", row);
-      }
-      code.helpers += "};\n";
-    }
-    code.helpers += fmt::format("static void {}({}const {} x[{}], {} y[{}]){}\n{{\n", fn,
-                                nk > 0 ? fmt::format("const {} k[{}], ", scalar, nk) : "", type,
-                                first.inputs.size(), type, first.outputs.size(),
-                                dialect.no_throw());
-    std::map<int, std::string> local;
-    for (std::size_t k = 0; k < first.inputs.size(); ++k)
-      local[first.inputs[k]] = fmt::format("x[{}]", k);
-    for (std::size_t k = 0; k < first.constants.size(); ++k)
-      local[first.constants[k]] = fmt::format("k[{}]", k);
-    for (std::size_t k = 0; k < first.ops.size(); ++k) {
-      code.helpers += fmt::format("    const {} t{} = {};\n", type, k,
-                                  expression(nodes[first.ops[k]], [&](int id) { return local.at(id); }));
-      local[first.ops[k]] = fmt::format("t{}", k);
-    }
-    for (std::size_t k = 0; k < first.outputs.size(); ++k)
-      code.helpers += fmt::format("    y[{}] = {};\n", k, local.at(first.outputs[k]));
-    code.helpers += "}\n\n";
+/// Prints a planned program as the body of a function and the shared functions it calls: one
+/// statement per operation, grouped and labelled by body and pass. Each computed value is named
+/// once, when its statement is printed, and operands are read by those names.
+template <class T>
+class CodePrinter {
+ public:
+  CodePrinter(const Program<T>& program, const Model<double>& model, const Dialect& dialect,
+              CodePlan plan)
+      : program_(program),
+        nodes_(program.graph.nodes),
+        model_(model),
+        dialect_(dialect),
+        plan_(std::move(plan)),
+        scalar_(std::is_same_v<T, float> ? "float" : "double"),
+        type_(dialect.batch() ? "lane" : scalar_),
+        name_(nodes_.size()),
+        per_body_(model.nbodies + 1, 0),
+        prefixes_(temporary_prefixes(model)) {}
+
+  EmittedCode print();
+
+ private:
+  std::string operand(int id) const;
+  std::string element(int id) const;
+  template <class Arg>
+  std::string expression(const Node<T>& n, Arg&& arg) const;
+  std::string shared_function(std::size_t g) const;
+  std::string prologue() const;
+  std::string kernel_call(int c);
+  std::string kernel_lane_by_lane(const KernelRecord& call, std::vector<std::string> arguments,
+                                  const std::string& kernel) const;
+  std::string statement(int id);
+  std::string lanes_body();
+  std::string lane_block(const LaneBlock& block, std::vector<std::string>& vector_name);
+  std::string sections_body();
+
+  const Program<T>& program_;
+  const std::vector<Node<T>>& nodes_;
+  const Model<double>& model_;
+  const Dialect& dialect_;
+  CodePlan plan_;
+  const std::string scalar_;
+  const std::string type_;  // of each computed value: the scalar, or a batch's lane
+  std::vector<std::string> name_;  // by node: its value as code, once printed
+  std::vector<int> per_body_;      // temporaries named so far, by body + 1
+  const std::vector<std::string> prefixes_;
+  std::map<std::vector<int>, std::string> gathered_;  // kernel inputs gathered into arrays
+  EmittedCode code_;
+};
+
+std::string apply(Op op, const std::string& a, const std::string& b) {
+  switch (op) {
+    case Op::Neg: return "-" + a;
+    case Op::Add: return a + " + " + b;
+    case Op::Sub: return a + " - " + b;
+    case Op::Mul: return a + " * " + b;
+    case Op::Div: return a + " / " + b;
+    default: return std::string();
   }
+}
 
-  // the arrays that the emitted statements and output stores read
+template <class T>
+template <class Arg>
+std::string CodePrinter<T>::expression(const Node<T>& n, Arg&& arg) const {
+  return apply(n.op, arg(n.a), n.b >= 0 ? arg(n.b) : std::string());
+}
+
+template <class T>
+std::string CodePrinter<T>::operand(int id) const {
+  const Node<T>& n = nodes_[id];
+  if (n.op == Op::Const) return literal(n.value);
+  if (n.op == Op::Input) {
+    const InputRef& in = program_.graph.inputs[n.input];
+    return dialect_.batch() ? fmt::format("{}{}", in.array, in.index)
+                            : fmt::format("{}[{}]", in.array, in.index);
+  }
+  if (plan_.trig[id]) {
+    const char* function = n.op == Op::Sin ? "sin" : "cos";
+    const int index = program_.graph.inputs[nodes_[n.a].input].index;
+    return dialect_.batch() ? fmt::format("{}_q{}", function, index)
+                            : fmt::format("{}{}_q[{}]", dialect_.trig_member(), function, index);
+  }
+  if (n.op == Op::Result) {  // entry n.input of the results of the call that node n.a made
+    const int c = nodes_[n.a].a;
+    std::size_t index = static_cast<std::size_t>(n.input);
+    std::size_t j = 0;
+    while (index >= program_.graph.calls[c].outputs[j])
+      index -= program_.graph.calls[c].outputs[j++];
+    return fmt::format("{}[{}]", plan_.call_arrays[c][j], index);
+  }
+  return name_[id];
+}
+
+/// An element of an array of values: in batch code a constant fills every lane.
+template <class T>
+std::string CodePrinter<T>::element(int id) const {
+  if (!dialect_.batch() || nodes_[id].op != Op::Const) return operand(id);
+  std::string copies = operand(id);
+  for (int l = 1; l < dialect_.lanes; ++l) copies += ", " + operand(id);
+  return "lane{" + copies + "}";
+}
+
+/// Shared function g, with its table of each section's constants.
+template <class T>
+std::string CodePrinter<T>::shared_function(std::size_t g) const {
+  const std::vector<int>& members = plan_.groups[g];
+  const Section& first = plan_.sections[members.front()];
+  const std::string fn = fmt::format("{}_shape_{}", program_.algorithm, g);
+  std::string users;
+  for (std::size_t k = 0; k < members.size() && k < 6; ++k)
+    users += (k ? ", " : "") + body_label(model_, plan_.sections[members[k]].body);
+  if (members.size() > 6) users += fmt::format(" and {} more", members.size() - 6);
+  std::string text =
+      fmt::format("// {}: {} operations, {} inputs, {} outputs; {}, {} sections: {}\n", fn,
+                  first.ops.size(), first.inputs.size(), first.outputs.size(),
+                  pass_name(first.pass), members.size(), users);
+  const std::size_t nk = first.constants.size();
+  if (nk > 0) {
+    text += fmt::format("{} {} {}_k[{}][{}] = {{\n", dialect_.table(), scalar_, fn, members.size(),
+                        nk);
+    for (const int member : members) {
+      std::string row;
+      for (const int c : plan_.sections[member].constants)
+        row += (row.empty() ? "" : ", ") + literal(nodes_[c].value);
+      text += fmt::format("    {{{}}},\n", row);
+    }
+    text += "};\n";
+  }
+  text += fmt::format("static void {}({}const {} x[{}], {} y[{}]){}\n{{\n", fn,
+                      nk > 0 ? fmt::format("const {} k[{}], ", scalar_, nk) : "", type_,
+                      first.inputs.size(), type_, first.outputs.size(), dialect_.no_throw());
+  std::map<int, std::string> local;
+  for (std::size_t k = 0; k < first.inputs.size(); ++k)
+    local[first.inputs[k]] = fmt::format("x[{}]", k);
+  for (std::size_t k = 0; k < first.constants.size(); ++k)
+    local[first.constants[k]] = fmt::format("k[{}]", k);
+  for (std::size_t k = 0; k < first.ops.size(); ++k) {
+    text += fmt::format("    const {} t{} = {};\n", type_, k,
+                        expression(nodes_[first.ops[k]], [&](int id) { return local.at(id); }));
+    local[first.ops[k]] = fmt::format("t{}", k);
+  }
+  for (std::size_t k = 0; k < first.outputs.size(); ++k)
+    text += fmt::format("    y[{}] = {};\n", k, local.at(first.outputs[k]));
+  return text + "}\n\n";
+}
+
+/// What the body does before its statements: discards the arrays that no output reads, loads
+/// into lanes the inputs and trig that batch code reads, and declares the shared functions'
+/// outputs.
+template <class T>
+std::string CodePrinter<T>::prologue() const {
   std::map<std::string, bool> used;
   std::set<int> loads;  // batch code: the input and trig nodes read, loaded into lanes first
   auto use = [&](int id) {
-    const Node<T>& n = nodes[id];
+    const Node<T>& n = nodes_[id];
     if (n.op == Op::Input)
-      used[program.graph.inputs[n.input].array] = true;
-    else if (is_trig(n))
+      used[program_.graph.inputs[n.input].array] = true;
+    else if (plan_.trig[id])
       used["trig"] = true;
     else
       return;
     loads.insert(id);
   };
-  for (std::size_t id = 0; id < nodes.size(); ++id)
-    if (is_op[id]) program.graph.for_each_operand(static_cast<int>(id), use);
-  for (const int id : program.stored) use(id);
+  for (std::size_t id = 0; id < nodes_.size(); ++id)
+    if (plan_.is_op[id]) program_.graph.for_each_operand(static_cast<int>(id), use);
+  for (const int id : program_.stored) use(id);
 
-  std::string& out = code.body;
+  std::string out;
   std::vector<std::string> arrays;
-  for (const ProgramArray& a : program.inputs) arrays.emplace_back(a.spec.name);
+  for (const ProgramArray& a : program_.inputs) arrays.emplace_back(a.spec.name);
   const auto q = std::find(arrays.begin(), arrays.end(), "q");
   arrays.insert(q == arrays.end() ? q : q + 1, "trig");
   for (const std::string& array : arrays)
     if (!used[array])
-      out += fmt::format("    {};  // {}\n\n", dialect.discard(array),
+      out += fmt::format("    {};  // {}\n\n", dialect_.discard(array),
                          array == "q" && used["trig"] ? "read only through trig"
                                                       : "no output of this robot depends on it");
-  if (dialect.batch() && !loads.empty()) {
+  if (dialect_.batch() && !loads.empty()) {
     out += "    // the inputs' lanes\n";
     for (const int id : loads) {
-      const Node<T>& n = nodes[id];
-      const InputRef& in = program.graph.inputs[n.op == Op::Input ? n.input : nodes[n.a].input];
+      const Node<T>& n = nodes_[id];
+      const InputRef& in = program_.graph.inputs[n.op == Op::Input ? n.input : nodes_[n.a].input];
       const std::string from =
           n.op == Op::Input ? in.array : fmt::format("trig.{}_q", n.op == Op::Sin ? "sin" : "cos");
       out += fmt::format("    lane {}; load({}, {} + {} * lanes);\n", operand(id), operand(id),
@@ -827,166 +910,234 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
     }
     out += "\n";
   }
-  if (w_size > 0)
-    out += fmt::format("    {} w[{}];  // the outputs of the sections that shared functions compute\n\n",
-                       type, w_size);
-  // a kernel call: its tables, the arrays it reads (an array another call wrote is passed as it
-  // is, the same entries gathered once), the arrays it writes, and the call
-  std::map<std::vector<int>, std::string> gathered;
-  auto kernel_call = [&](int c) {
-    const KernelRecord& call = calls[c];
-    std::string text = fmt::format("    // dyngen::kernels::{}: {}\n", call.kernel,
-                                   to_string(count_ops_of(call)));
-    std::vector<std::string> arguments;
-    for (const int x : call.ints) arguments.push_back(std::to_string(x));
-    for (std::size_t t = 0; t < call.tables.size(); ++t) {
-      std::vector<std::string> items;
-      for (const int x : call.tables[t]) items.push_back(std::to_string(x));
-      const std::string table = fmt::format("{}_{}_{}", call.kernel, c, call.names[t]);
-      text += fmt::format("    static constexpr int {}[] = {};\n", table, braced_list(items));
-      arguments.push_back(table);
-    }
-    for (std::size_t j = 0; j < call.inputs.size(); ++j) {
-      const std::vector<int>& ids = call.inputs[j];
-      std::string array;
-      for (std::size_t d = 0; d < calls.size() && array.empty(); ++d) {
-        int first = calls[d].first_result;
-        for (std::size_t k = 0; k < calls[d].outputs.size(); ++k) {
-          bool same = calls[d].outputs[k] == ids.size();
-          for (std::size_t e = 0; same && e < ids.size(); ++e)
-            same = ids[e] == first + static_cast<int>(e);
-          if (same) array = call_arrays[d][k];
-          first += static_cast<int>(calls[d].outputs[k]);
-        }
-      }
-      if (array.empty()) {
-        const auto [it, added] =
-            gathered.emplace(ids, fmt::format("{}_{}_{}", call.kernel, c,
-                                              call.names[call.tables.size() + j]));
-        if (added) {
-          std::vector<std::string> items;
-          for (const int id : ids) items.push_back(element(id));
-          text += fmt::format("    const {} {}[{}] = {};\n", type, it->second, ids.size(),
-                              braced_list(items));
-        }
-        array = it->second;
-      }
-      arguments.push_back(array);
-    }
-    for (std::size_t j = 0; j < call.outputs.size(); ++j) {
-      const std::string& array = call_arrays[c][j];
-      if (!call_in_place[c][j])
-        text += fmt::format("    {} {}[{}];\n", type, array, call.outputs[j]);
-      arguments.push_back(array);
-    }
-    const std::string kernel = fmt::format("dyngen::kernels::{}", call.kernel);
-    if (!dialect.batch()) return text + wrapped_call(kernel, arguments);
-    // lane by lane: each state's numbers copied out of the lanes, the scalar kernel, and its
-    // results copied back
-    const std::size_t first_array = call.ints.size() + call.tables.size();
-    const std::size_t arrays = call.inputs.size() + call.outputs.size();
-    std::string declare, copy_in, copy_out;
-    for (std::size_t j = 0; j < arrays; ++j) {
-      const bool input = j < call.inputs.size();
-      const std::string& array = arguments[first_array + j];
-      const std::size_t size = input ? call.inputs[j].size() : call.outputs[j - call.inputs.size()];
-      declare += fmt::format("        {} {}_l[{}];\n", scalar, array, size);
-      if (input)
-        copy_in += fmt::format("        for (int k = 0; k < {1}; ++k) {0}_l[k] = {0}[k][l];\n",
-                               array, size);
-      else
-        copy_out += fmt::format("        for (int k = 0; k < {1}; ++k) {0}[k][l] = {0}_l[k];\n",
-                                array, size);
-      arguments[first_array + j] = array + "_l";
-    }
-    return text + "    for (int l = 0; l < lanes; ++l) {\n" + declare + copy_in +
-           wrapped_call(kernel, arguments, "        ") + copy_out + "    }\n";
-  };
-  std::vector<int> per_body(model.nbodies + 1, 0);
-  const std::vector<std::string> prefixes = temporary_prefixes(model);
-  auto statement = [&](int id) {
-    const Node<T>& n = nodes[id];
-    if (n.op == Op::Call) return kernel_call(n.a);
-    name[id] = fmt::format("{}_{}", prefixes[n.body + 1], per_body[n.body + 1]++);
-    return fmt::format("    const {} {} = {};\n", type, name[id], expression(n, operand));
-  };
-  if (lanes) {
-    std::vector<int> section_of(nodes.size(), -1);
-    for (std::size_t s = 0; s < sections.size(); ++s)
-      for (const int id : sections[s].ops) section_of[id] = static_cast<int>(s);
-    std::vector<std::string> vector_name(nodes.size());
-    std::set<std::size_t> widths;
-    for (const LaneBlock& block : blocks) widths.insert(block.members.size());
-    for (const std::size_t width : widths)
-      out += fmt::format("    typedef {0} lanes{1} __attribute__((vector_size({1} * sizeof({0}))));\n",
-                         scalar, width);
-    if (!widths.empty()) out += "\n";
-    int current = -1;  // the section whose header was printed last; -2 a block
-    for (const int unit : order) {
-      if (unit >= 0) {
-        const int s = section_of[unit];
-        if (s != current)
-          out += (current == -1 ? "" : "\n") +
-                 section_header<T>(model, sections[s].body, sections[s].pass);
-        current = s;
-        out += statement(unit);
-        continue;
-      }
-      const LaneBlock& block = blocks[static_cast<std::size_t>(-1 - unit)];
-      const std::size_t width = block.members.size();
-      const std::string vector = fmt::format("lanes{}", width);
-      out += fmt::format("{}    // ---- {} lanes; {}:\n", current == -1 ? "" : "\n", width,
-                         pass_name(sections[block.members[0]].pass));
-      current = -2;
-      for (const int member : block.members) {
-        const int body = sections[member].body;
-        out += fmt::format("    //      link {}, joint '{}': {}\n", body_label(model, body),
-                           safe_text(model.joint_name[body]), joint_description(model, body));
-      }
-      const int body = sections[block.members[0]].body;
-      for (std::size_t k = 0; k < block.in_lanes.size(); ++k) {
-        if (!block.in_lanes[k]) continue;
-        auto at = [&](std::size_t l) { return sections[block.members[l]].ops[k]; };
-        // an operand: a block's vector where lane l reads lane l of it, else its lanes filled
-        auto lanes_of = [&](bool second) {
-          const std::vector<int> x = lane_operands(program, sections, block, k, second);
-          if (whole_vector(x, blocks, slot)) return vector_name[x[0]];
-          std::string items;
-          for (std::size_t l = 0; l < width; ++l) items += (l ? ", " : "") + operand(x[l]);
-          return vector + "{" + items + "}";
-        };
-        const Node<T>& n = nodes[at(0)];
-        const std::string v = fmt::format("{}_l{}", prefixes[body + 1], per_body[body + 1]++);
-        out += fmt::format("    const {} {} = {};\n", vector, v,
-                           apply(n.op, lanes_of(false), n.b >= 0 ? lanes_of(true) : std::string()));
-        for (std::size_t l = 0; l < width; ++l) {
-          vector_name[at(l)] = v;
-          name[at(l)] = fmt::format("{}[{}]", v, l);
-        }
-        code.lane_operations += static_cast<long>(width);
-      }
-      ++code.lane_blocks;
-    }
-    out += "\n";
-  } else {
-    for (const Section& s : sections) {
-      out += section_header<T>(model, s.body, s.pass);
-      if (s.group >= 0) {
-        std::string x;
-        for (const int id : s.inputs) x += (x.empty() ? "" : ", ") + element(id);
-        const std::string k = s.constants.empty()
-                                  ? std::string()
-                                  : fmt::format("{}_shape_{}_k[{}], ", prefix, s.group, s.instance);
-        out += fmt::format("    {{\n        const {} x[] = {{{}}};\n        {}_shape_{}({}x, w + {});\n    }}\n\n",
-                           type, x, prefix, s.group, k, s.w);
-        continue;
-      }
-      for (const int id : s.ops) out += statement(id);
-      out += "\n";
-    }
+  if (plan_.w_size > 0)
+    out += fmt::format(
+        "    {} w[{}];  // the outputs of the sections that shared functions compute\n\n", type_,
+        plan_.w_size);
+  return out;
+}
+
+/// A kernel call: its tables, the arrays it reads (an array another call wrote is passed as it
+/// is, the same entries gathered once), the arrays it writes, and the call.
+template <class T>
+std::string CodePrinter<T>::kernel_call(int c) {
+  const std::vector<KernelRecord>& calls = program_.graph.calls;
+  const KernelRecord& call = calls[c];
+  std::string text = fmt::format("    // dyngen::kernels::{}: {}\n", call.kernel,
+                                 to_string(count_ops_of(call)));
+  std::vector<std::string> arguments;
+  for (const int x : call.ints) arguments.push_back(std::to_string(x));
+  for (std::size_t t = 0; t < call.tables.size(); ++t) {
+    std::vector<std::string> items;
+    for (const int x : call.tables[t]) items.push_back(std::to_string(x));
+    const std::string table = fmt::format("{}_{}_{}", call.kernel, c, call.names[t]);
+    text += fmt::format("    static constexpr int {}[] = {};\n", table, braced_list(items));
+    arguments.push_back(table);
   }
-  out += output_stores(program, model, dialect, output_in_place, operand);
-  return code;
+  for (std::size_t j = 0; j < call.inputs.size(); ++j) {
+    const std::vector<int>& ids = call.inputs[j];
+    std::string array;
+    for (std::size_t d = 0; d < calls.size() && array.empty(); ++d) {
+      int first = calls[d].first_result;
+      for (std::size_t k = 0; k < calls[d].outputs.size(); ++k) {
+        bool same = calls[d].outputs[k] == ids.size();
+        for (std::size_t e = 0; same && e < ids.size(); ++e)
+          same = ids[e] == first + static_cast<int>(e);
+        if (same) array = plan_.call_arrays[d][k];
+        first += static_cast<int>(calls[d].outputs[k]);
+      }
+    }
+    if (array.empty()) {
+      const auto [it, added] = gathered_.emplace(
+          ids, fmt::format("{}_{}_{}", call.kernel, c, call.names[call.tables.size() + j]));
+      if (added) {
+        std::vector<std::string> items;
+        for (const int id : ids) items.push_back(element(id));
+        text += fmt::format("    const {} {}[{}] = {};\n", type_, it->second, ids.size(),
+                            braced_list(items));
+      }
+      array = it->second;
+    }
+    arguments.push_back(array);
+  }
+  for (std::size_t j = 0; j < call.outputs.size(); ++j) {
+    const std::string& array = plan_.call_arrays[c][j];
+    if (!plan_.call_in_place[c][j])
+      text += fmt::format("    {} {}[{}];\n", type_, array, call.outputs[j]);
+    arguments.push_back(array);
+  }
+  const std::string kernel = fmt::format("dyngen::kernels::{}", call.kernel);
+  if (!dialect_.batch()) return text + wrapped_call(kernel, arguments);
+  return text + kernel_lane_by_lane(call, std::move(arguments), kernel);
+}
+
+/// A kernel call in batch code, lane by lane: each state's numbers copied out of the lanes, the
+/// scalar kernel, and its results copied back.
+template <class T>
+std::string CodePrinter<T>::kernel_lane_by_lane(const KernelRecord& call,
+                                                std::vector<std::string> arguments,
+                                                const std::string& kernel) const {
+  const std::size_t first_array = call.ints.size() + call.tables.size();
+  const std::size_t arrays = call.inputs.size() + call.outputs.size();
+  std::string declare, copy_in, copy_out;
+  for (std::size_t j = 0; j < arrays; ++j) {
+    const bool input = j < call.inputs.size();
+    const std::string& array = arguments[first_array + j];
+    const std::size_t size = input ? call.inputs[j].size() : call.outputs[j - call.inputs.size()];
+    declare += fmt::format("        {} {}_l[{}];\n", scalar_, array, size);
+    if (input)
+      copy_in += fmt::format("        for (int k = 0; k < {1}; ++k) {0}_l[k] = {0}[k][l];\n",
+                             array, size);
+    else
+      copy_out += fmt::format("        for (int k = 0; k < {1}; ++k) {0}[k][l] = {0}_l[k];\n",
+                              array, size);
+    arguments[first_array + j] = array + "_l";
+  }
+  return "    for (int l = 0; l < lanes; ++l) {\n" + declare + copy_in +
+         wrapped_call(kernel, arguments, "        ") + copy_out + "    }\n";
+}
+
+/// The statement of node id, which names its value.
+template <class T>
+std::string CodePrinter<T>::statement(int id) {
+  const Node<T>& n = nodes_[id];
+  if (n.op == Op::Call) return kernel_call(n.a);
+  name_[id] = fmt::format("{}_{}", prefixes_[n.body + 1], per_body_[n.body + 1]++);
+  return fmt::format("    const {} {} = {};\n", type_, name_[id],
+                     expression(n, [this](int x) { return operand(x); }));
+}
+
+/// A lane block: a vector statement for each operation its lanes share (vector_name: by node,
+/// the vector statement that computed it).
+template <class T>
+std::string CodePrinter<T>::lane_block(const LaneBlock& block,
+                                       std::vector<std::string>& vector_name) {
+  const std::vector<Section>& sections = plan_.sections;
+  const std::size_t width = block.members.size();
+  const std::string vector = fmt::format("lanes{}", width);
+  std::string out = fmt::format("    // ---- {} lanes; {}:\n", width,
+                                pass_name(sections[block.members[0]].pass));
+  for (const int member : block.members) {
+    const int body = sections[member].body;
+    out += fmt::format("    //      link {}, joint '{}': {}\n", body_label(model_, body),
+                       safe_text(model_.joint_name[body]), joint_description(model_, body));
+  }
+  const int body = sections[block.members[0]].body;
+  for (std::size_t k = 0; k < block.in_lanes.size(); ++k) {
+    if (!block.in_lanes[k]) continue;
+    auto at = [&](std::size_t l) { return sections[block.members[l]].ops[k]; };
+    // an operand: a block's vector where lane l reads lane l of it, else its lanes filled
+    auto lanes_of = [&](bool second) {
+      const std::vector<int> x = lane_operands(program_, sections, block, k, second);
+      if (whole_vector(x, plan_.blocks, plan_.slot)) return vector_name[x[0]];
+      std::string items;
+      for (std::size_t l = 0; l < width; ++l) items += (l ? ", " : "") + operand(x[l]);
+      return vector + "{" + items + "}";
+    };
+    const Node<T>& n = nodes_[at(0)];
+    const std::string v = fmt::format("{}_l{}", prefixes_[body + 1], per_body_[body + 1]++);
+    out += fmt::format("    const {} {} = {};\n", vector, v,
+                       apply(n.op, lanes_of(false), n.b >= 0 ? lanes_of(true) : std::string()));
+    for (std::size_t l = 0; l < width; ++l) {
+      vector_name[at(l)] = v;
+      name_[at(l)] = fmt::format("{}[{}]", v, l);
+    }
+    code_.lane_operations += static_cast<long>(width);
+  }
+  ++code_.lane_blocks;
+  return out;
+}
+
+/// The statements in lanes: the vector types, then sections and lane blocks in their scheduled
+/// order.
+template <class T>
+std::string CodePrinter<T>::lanes_body() {
+  const std::vector<Section>& sections = plan_.sections;
+  std::string out;
+  std::vector<int> section_of(nodes_.size(), -1);
+  for (std::size_t s = 0; s < sections.size(); ++s)
+    for (const int id : sections[s].ops) section_of[id] = static_cast<int>(s);
+  std::vector<std::string> vector_name(nodes_.size());
+  std::set<std::size_t> widths;
+  for (const LaneBlock& block : plan_.blocks) widths.insert(block.members.size());
+  for (const std::size_t width : widths)
+    out += fmt::format(
+        "    typedef {0} lanes{1} __attribute__((vector_size({1} * sizeof({0}))));\n", scalar_,
+        width);
+  if (!widths.empty()) out += "\n";
+  int current = -1;  // the section whose header was printed last; -2 a block
+  for (const int unit : plan_.order) {
+    if (unit >= 0) {
+      const int s = section_of[unit];
+      if (s != current) {
+        if (current != -1) out += "\n";
+        out += section_header<T>(model_, sections[s].body, sections[s].pass);
+      }
+      current = s;
+      out += statement(unit);
+      continue;
+    }
+    if (current != -1) out += "\n";
+    current = -2;
+    out += lane_block(plan_.blocks[static_cast<std::size_t>(-1 - unit)], vector_name);
+  }
+  return out + "\n";
+}
+
+/// The statements section by section, each in place or as a call of its shared function.
+template <class T>
+std::string CodePrinter<T>::sections_body() {
+  std::string out;
+  for (const Section& s : plan_.sections) {
+    out += section_header<T>(model_, s.body, s.pass);
+    if (s.group >= 0) {
+      std::string x;
+      for (const int id : s.inputs) x += (x.empty() ? "" : ", ") + element(id);
+      const std::string k =
+          s.constants.empty()
+              ? std::string()
+              : fmt::format("{}_shape_{}_k[{}], ", program_.algorithm, s.group, s.instance);
+      out += fmt::format("    {{\n        const {} x[] = {{{}}};\n", type_, x);
+      out += fmt::format("        {}_shape_{}({}x, w + {});\n    }}\n\n", program_.algorithm,
+                         s.group, k, s.w);
+      continue;
+    }
+    for (const int id : s.ops) out += statement(id);
+    out += "\n";
+  }
+  return out;
+}
+
+template <class T>
+EmittedCode CodePrinter<T>::print() {
+  code_.angles.assign(static_cast<std::size_t>(model_.nq), false);
+  for (std::size_t id = 0; id < nodes_.size(); ++id)
+    if (plan_.trig[id])
+      code_.angles[static_cast<std::size_t>(
+          program_.graph.inputs[nodes_[nodes_[id].a].input].index)] = true;
+  code_.sections = static_cast<int>(plan_.sections.size());
+  code_.shared_functions = static_cast<int>(plan_.groups.size());
+  for (const Section& s : plan_.sections) {
+    if (s.group < 0) continue;
+    ++code_.shared_sections;
+    for (std::size_t k = 0; k < s.outputs.size(); ++k)
+      name_[s.outputs[k]] = fmt::format("w[{}]", s.w + static_cast<int>(k));
+  }
+  for (std::size_t g = 0; g < plan_.groups.size(); ++g) code_.helpers += shared_function(g);
+  code_.body = prologue();
+  code_.body += plan_.lanes ? lanes_body() : sections_body();
+  code_.body += output_stores(program_, model_, dialect_, plan_.output_in_place,
+                              [this](int id) { return operand(id); });
+  return std::move(code_);
+}
+
+}  // namespace
+
+template <class T>
+EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure,
+                      const Dialect& dialect) {
+  return CodePrinter<T>(program, model, dialect, plan_code(program, model, structure, dialect))
+      .print();
 }
 
 namespace {

@@ -505,165 +505,178 @@ std::string range_text(const std::vector<AlgorithmRange>& ranges, bool single_pr
       overflows);
 }
 
-template <class T>
-Generated generate_as(const Robot& robot, const GenerateOptions& options) {
-  // frames only where a function computes something of them
-  Model<double> model = robot.model;
-  if (std::none_of(options.algorithms.begin(), options.algorithms.end(), uses_frames))
-    model.frames.clear();
-  const std::string ns = options.name;
-  const std::string scalar = std::is_same_v<T, float> ? "float" : "double";
+/// What generate_as knows of the package it writes: the robot, its model, the options, how its
+/// code is spelled (dialect; batch_dialect for batches, with 0 lanes when there are none).
+struct PackageContext {
+  PackageContext(const Robot& r, const Model<double>& m, const GenerateOptions& o, bool in_float)
+      : robot(r),
+        model(m),
+        options(o),
+        dialect{o.language, o.name},
+        batch_dialect{Language::Cpp, o.name, o.batch},
+        ns(o.name),
+        scalar(in_float ? "float" : "double"),
+        single(in_float),
+        header(ns + (dialect.c() ? "_dynamics.h" : "_dynamics.hpp")),
+        source(ns + (dialect.c() ? "_dynamics.c" : "_dynamics.cpp")) {}
 
-  Generated result;
-  result.nframes = static_cast<int>(model.frames.size());
-  const bool with_aba = !pivot_algorithms(options.algorithms).empty();
-  const auto step = [&](const std::string& text) {
-    if (options.progress) options.progress(text);
-  };
-  step("estimating the conditioning");
-  result.conditioning =
-      numerics::estimate_conditioning(model, options.conditioning_samples, 1, with_aba);
-  result.warnings =
-      precision_warnings(result.conditioning, with_aba, std::is_same_v<T, float>);
-  if (!std::is_same_v<T, float> && target_single_precision(options.target))
-    result.warnings.push_back(fmt::format(
-        "--target {}: its FPU computes in single precision only, so double code runs in "
-        "software floating point there, about 35 times the instructions of float (ur5's rnea: "
-        "50,346 instructions on a Cortex-M4F against 1,401 in double on a Cortex-M7 and 1,181 in "
-        "float on the M4F); generate --scalar float",
-        target_names[static_cast<int>(options.target)]));
-  const Dialect dialect{options.language, ns};
-  const Dialect batch_dialect{Language::Cpp, ns, options.batch};
-  const bool single = std::is_same_v<T, float>;
+  const Robot& robot;
+  const Model<double>& model;
+  const GenerateOptions& options;
+  Dialect dialect;
+  Dialect batch_dialect;
+  std::string ns, scalar;
+  bool single;
+  std::string header, source;  // the code's file names
+};
+
+/// The package's functions as text, by the part of the files they go in, filled algorithm by
+/// algorithm (add_function, add_batch_function).
+struct FunctionTexts {
   std::string declarations, definitions, cases, batch_declarations, batch_definitions,
       python_functions;
   bool calls_kernels = false;
-  std::vector<AlgorithmRange> ranges;
-  for (const Algorithm& a : options.algorithms) {
-    step(fmt::format("tracing {} ({})", a, scalar));
-    // the runtime's count first, so that its unsimplified trace is gone before the other's
-    const OpCounts runtime = count_ops(trace<T>(a, model, false), false);
-    // the kernels run in vector lanes in C++ on the host (C has none; a Cortex-M no lanes)
-    const bool vector_kernels = !dialect.c() && options.target == Target::Host;
-    const Program<T> program = trace<T>(a, model, true, default_call_kernels_from, vector_kernels);
-    // the kernels are C++ templates; unrolled into C, atlas's derivatives take GCC 400 s and 5 GB
-    if (dialect.c() && !program.graph.calls.empty())
-      throw InputError(fmt::format(
-          "{}: {} of this robot calls kernels (dyngen_kernels.hpp, for its {} degrees of freedom), "
-          "which C output does not have: generate it as C++ (--lang c++), or leave it out of the "
-          "C package (--algorithms)",
-          robot.path, a, model.nv));
-    if (const int id = first_non_finite_constant(program); id >= 0) {
-      const Node<T>& node = program.graph.nodes[id];
-      throw InputError(fmt::format(
-          "{}: {} overflows in {}: it computes {} from the model's constants alone, {}; the "
-          "robot's masses, lengths, inertias or gravity are too large or too small for {}{}",
-          robot.path, a, scalar, node.value, node_place(model, node.body, node.pass), scalar,
-          std::is_same_v<T, float> ? " (generate double: --scalar double)" : ""));
-    }
-    step(fmt::format("estimating the range of {}'s values", a));
-    ranges.push_back(check_range(robot, model, program, result.warnings));
-    const OpCounts generated = count_ops(program);
-    calls_kernels = calls_kernels || !program.graph.calls.empty();
-    const EmittedCode code = emit_code(program, model, options.structure, dialect);
-    const std::string trig_fill = emit_trig_fill(model, single, code.angles, dialect);
-    result.counts.push_back({a, generated, runtime, code.sections, code.shared_sections,
-                             code.shared_functions, code.lane_blocks, code.lane_operations});
+};
 
-    const AlgorithmSpec<double>& spec = algorithm_spec(a);
-    std::string trig_arguments, arguments;
-    for (const ArraySpec& x : spec.inputs) {
-      trig_arguments += fmt::format("{}{}", trig_arguments.empty() ? "" : ", ", x.name);
-      if (x.name == "q") trig_arguments += dialect.c() ? ", &trig" : ", trig";
-    }
-    for (const ArraySpec& y : spec.outputs) trig_arguments += fmt::format(", {}", y.name);
-    for (std::size_t k = 0; k < spec.inputs.size(); ++k)
-      arguments += fmt::format("{}x[{}].data()", k == 0 ? "" : ", ", k);
-    for (std::size_t k = 0; k < spec.outputs.size(); ++k)
-      arguments += fmt::format(", y[{}].data()", k);
-    const std::string summary(spec.summary),
-        call = declaration(dialect.external(a), parameters(spec, scalar, false, dialect), dialect),
-        trig_call = declaration(dialect.external(a + "_trig"), parameters(spec, scalar, true, dialect),
-                                dialect);
-    declarations += fill("function.hpp.in", {{"summary", summary},
-                                             {"declaration", call},
-                                             {"trig_declaration", trig_call}}) +
-                    "\n";
-    if (!code.helpers.empty()) definitions += "\n" + code.helpers;
-    definitions += fill("function.cpp.in", {{"trig_name", dialect.external(a + "_trig")},
-                                            {"trig_type", dialect.external("JointTrig")},
-                                            {"joint_trig", dialect.external("joint_trig")},
-                                            {"summary", summary},
-                                            {"declaration", call},
-                                            {"trig_declaration", trig_call},
-                                            {"trig_arguments", trig_arguments},
-                                            {"trig_fill", trig_fill},
-                                            {"counts", to_string(generated)},
-                                            {"body", code.body}});
-    cases += fill("function_check.cpp.in",
-                  {{"name", a},
-                   {"namespace", ns},
-                   {"call", "::" + (dialect.c() ? dialect.external(a) : ns + "::" + a)},
-                   {"arguments", arguments}});
-    if (!batch_dialect.batch()) continue;
-
-    // the same program printed over lanes, and the function over any count of states; a batch
-    // runs its states in the lanes, so only the calls that keep the code small stay
-    step(fmt::format("printing {} for batches of {}", a, options.batch));
-    std::optional<Program<T>> inlined;
-    if (std::any_of(program.graph.calls.begin(), program.graph.calls.end(),
-                    [](const KernelRecord& call) { return call.for_lanes; }))
-      inlined = trace<T>(a, model, true, default_call_kernels_from, false);
-    const Program<T>& batch_program = inlined ? *inlined : program;
-    const EmittedCode lanes = emit_code(batch_program, model, options.structure, batch_dialect);
-    const std::string batch_call = declaration(
-                          a + "_batch", parameters(spec, scalar, false, batch_dialect), batch_dialect),
-                      batch_trig_call =
-                          declaration(a + "_batch_trig", parameters(spec, scalar, true, batch_dialect),
-                                      batch_dialect),
-                      many_call = declaration(a + "_many", many_parameters(spec, scalar), batch_dialect);
-    batch_declarations += fill("batch_function.hpp.in",
-                               {{"summary", summary},
-                                {"lanes", std::to_string(options.batch)},
-                                {"batch_declaration", batch_call},
-                                {"trig_declaration", batch_trig_call},
-                                {"many_declaration", many_call}}) +
-                          "\n";
-    if (!lanes.helpers.empty()) batch_definitions += "\n" + lanes.helpers;
-    batch_definitions +=
-        fill("function.cpp.in",
-             {{"trig_name", a + "_batch_trig"},
-              {"trig_type", "JointTrigBatch"},
-              {"joint_trig", "joint_trig_batch"},
-              {"summary", summary + " (a batch)"},
-              {"declaration", batch_call},
-              {"trig_declaration", batch_trig_call},
-              {"trig_arguments", trig_arguments},
-              {"trig_fill", emit_trig_fill(model, single, lanes.angles, batch_dialect)},
-              {"counts", to_string(count_ops(batch_program)) + " per lane"},
-              {"body", lanes.body}});
-    std::map<std::string, std::string> many = many_values(spec, scalar, batch_dialect);
-    many.insert({{"summary", summary}, {"declaration", many_call}, {"batch", a + "_batch"}});
-    batch_definitions += fill("many.cpp.in", many);
-    if (options.python) python_functions += python_function(spec, ns);
-    cases += fill("batch_check.cpp.in",
-                  {{"name", a}, {"namespace", ns}, {"call", "::" + ns + "::" + a},
-                   {"arguments", arguments}});
+/// Algorithm a traced for the package's code, refused when C would need kernels or a constant
+/// of the model overflows T.
+template <class T>
+Program<T> traced_program(const PackageContext& p, const Algorithm& a) {
+  // the kernels run in vector lanes in C++ on the host (C has none; a Cortex-M no lanes)
+  const bool vector_kernels = !p.dialect.c() && p.options.target == Target::Host;
+  Program<T> program = trace<T>(a, p.model, true, default_call_kernels_from, vector_kernels);
+  // the kernels are C++ templates; unrolled into C, atlas's derivatives take GCC 400 s and 5 GB
+  if (p.dialect.c() && !program.graph.calls.empty())
+    throw InputError(fmt::format(
+        "{}: {} of this robot calls kernels (dyngen_kernels.hpp, for its {} degrees of freedom), "
+        "which C output does not have: generate it as C++ (--lang c++), or leave it out of the "
+        "C package (--algorithms)",
+        p.robot.path, a, p.model.nv));
+  if (const int id = first_non_finite_constant(program); id >= 0) {
+    const Node<T>& node = program.graph.nodes[id];
+    throw InputError(fmt::format(
+        "{}: {} overflows in {}: it computes {} from the model's constants alone, {}; the "
+        "robot's masses, lengths, inertias or gravity are too large or too small for {}{}",
+        p.robot.path, a, p.scalar, node.value, node_place(p.model, node.body, node.pass),
+        p.scalar, std::is_same_v<T, float> ? " (generate double: --scalar double)" : ""));
   }
-  if (!declarations.empty()) declarations.pop_back();
-  if (!batch_declarations.empty()) batch_declarations.pop_back();
-  const bool aba_overflows = std::any_of(ranges.begin(), ranges.end(), [](const AlgorithmRange& r) {
-    return !r.extreme_overflow.empty() && algorithm_spec(r.algorithm).divides_by_pivots;
-  });
-  result.conditioning_text =
-      conditioning_text(result.conditioning, with_aba, aba_overflows ? scalar.c_str() : nullptr) +
-      range_text(ranges, single);
+  return program;
+}
 
+/// The arguments the check passes to f (x[0].data(), ..., y[0].data(), ...) and those that f
+/// passes to f_trig (q, trig, v, ..., tau).
+std::pair<std::string, std::string> call_arguments(const AlgorithmSpec<double>& spec,
+                                                   const Dialect& dialect) {
+  std::string trig_arguments, arguments;
+  for (const ArraySpec& x : spec.inputs) {
+    trig_arguments += fmt::format("{}{}", trig_arguments.empty() ? "" : ", ", x.name);
+    if (x.name == "q") trig_arguments += dialect.c() ? ", &trig" : ", trig";
+  }
+  for (const ArraySpec& y : spec.outputs) trig_arguments += fmt::format(", {}", y.name);
+  for (std::size_t k = 0; k < spec.inputs.size(); ++k)
+    arguments += fmt::format("{}x[{}].data()", k == 0 ? "" : ", ", k);
+  for (std::size_t k = 0; k < spec.outputs.size(); ++k)
+    arguments += fmt::format(", y[{}].data()", k);
+  return {arguments, trig_arguments};
+}
+
+/// Function f of the package's code: its declaration, its definition (and f_trig's), and its
+/// case in the check.
+void add_function(FunctionTexts& text, const PackageContext& p, const AlgorithmSpec<double>& spec,
+                  const EmittedCode& code, const OpCounts& generated) {
+  const Dialect& dialect = p.dialect;
+  const std::string a(spec.name), summary(spec.summary);
+  const auto [arguments, trig_arguments] = call_arguments(spec, dialect);
+  const std::string call = declaration(dialect.external(a),
+                                       parameters(spec, p.scalar, false, dialect), dialect),
+                    trig_call = declaration(dialect.external(a + "_trig"),
+                                            parameters(spec, p.scalar, true, dialect), dialect);
+  text.declarations += fill("function.hpp.in", {{"summary", summary},
+                                                {"declaration", call},
+                                                {"trig_declaration", trig_call}}) +
+                       "\n";
+  if (!code.helpers.empty()) text.definitions += "\n" + code.helpers;
+  text.definitions +=
+      fill("function.cpp.in",
+           {{"trig_name", dialect.external(a + "_trig")},
+            {"trig_type", dialect.external("JointTrig")},
+            {"joint_trig", dialect.external("joint_trig")},
+            {"summary", summary},
+            {"declaration", call},
+            {"trig_declaration", trig_call},
+            {"trig_arguments", trig_arguments},
+            {"trig_fill", emit_trig_fill(p.model, p.single, code.angles, dialect)},
+            {"counts", to_string(generated)},
+            {"body", code.body}});
+  text.cases += fill("function_check.cpp.in",
+                     {{"name", a},
+                      {"namespace", p.ns},
+                      {"call", "::" + (dialect.c() ? dialect.external(a) : p.ns + "::" + a)},
+                      {"arguments", arguments}});
+}
+
+/// f_batch and f_many of the package's batches, their Python function and their check case: the
+/// same program printed over lanes, and the function over any count of states. A batch runs its
+/// states in the lanes, so only the kernel calls that keep the code small stay.
+template <class T>
+void add_batch_function(FunctionTexts& text, const PackageContext& p,
+                        const AlgorithmSpec<double>& spec, const Program<T>& program) {
+  const Dialect& dialect = p.batch_dialect;
+  const std::string a(spec.name), summary(spec.summary);
+  std::optional<Program<T>> inlined;
+  if (std::any_of(program.graph.calls.begin(), program.graph.calls.end(),
+                  [](const KernelRecord& call) { return call.for_lanes; }))
+    inlined = trace<T>(a, p.model, true, default_call_kernels_from, false);
+  const Program<T>& batch_program = inlined ? *inlined : program;
+  const EmittedCode lanes = emit_code(batch_program, p.model, p.options.structure, dialect);
+  const auto [arguments, trig_arguments] = call_arguments(spec, p.dialect);
+  const std::string batch_call = declaration(
+                        a + "_batch", parameters(spec, p.scalar, false, dialect), dialect),
+                    batch_trig_call = declaration(
+                        a + "_batch_trig", parameters(spec, p.scalar, true, dialect), dialect),
+                    many_call = declaration(a + "_many", many_parameters(spec, p.scalar), dialect);
+  text.batch_declarations += fill("batch_function.hpp.in",
+                                  {{"summary", summary},
+                                   {"lanes", std::to_string(p.options.batch)},
+                                   {"batch_declaration", batch_call},
+                                   {"trig_declaration", batch_trig_call},
+                                   {"many_declaration", many_call}}) +
+                             "\n";
+  if (!lanes.helpers.empty()) text.batch_definitions += "\n" + lanes.helpers;
+  text.batch_definitions +=
+      fill("function.cpp.in",
+           {{"trig_name", a + "_batch_trig"},
+            {"trig_type", "JointTrigBatch"},
+            {"joint_trig", "joint_trig_batch"},
+            {"summary", summary + " (a batch)"},
+            {"declaration", batch_call},
+            {"trig_declaration", batch_trig_call},
+            {"trig_arguments", trig_arguments},
+            {"trig_fill", emit_trig_fill(p.model, p.single, lanes.angles, dialect)},
+            {"counts", to_string(count_ops(batch_program)) + " per lane"},
+            {"body", lanes.body}});
+  std::map<std::string, std::string> many = many_values(spec, p.scalar, dialect);
+  many.insert({{"summary", summary}, {"declaration", many_call}, {"batch", a + "_batch"}});
+  text.batch_definitions += fill("many.cpp.in", many);
+  if (p.options.python) text.python_functions += python_function(spec, p.ns);
+  text.cases += fill("batch_check.cpp.in", {{"name", a},
+                                            {"namespace", p.ns},
+                                            {"call", "::" + p.ns + "::" + a},
+                                            {"arguments", arguments}});
+}
+
+/// "    \"shoulder_pan_joint\",\n..." : the velocity names as initialiser lines.
+std::string joint_name_lines(const Model<double>& model) {
   std::string joint_names;
   const std::vector<std::string> names = velocity_names(model);
   for (std::size_t k = 0; k < names.size(); ++k)
     joint_names +=
         fmt::format("    {},{}", string_literal(names[k]), k + 1 < names.size() ? "\n" : "");
+  return joint_names;
+}
+
+/// The header's lines on how q and v hold each free joint.
+std::vector<std::string> free_joint_lines(const Model<double>& model) {
   std::vector<std::string> free_joints;
   for (int i = 0; i < model.nbodies; ++i)
     if (model.joint_type[i] == JointType::Free) {
@@ -675,154 +688,255 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
           model.v_index[i], model.v_index[i] + 5));
       free_joints.push_back("body's own frame (tau alike: force, then moment)");
     }
-  const Vec3<double>& g = model.gravity;
-  const std::string gravity = fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z));
+  return free_joints;
+}
 
-  const std::string sincos = single ? "dyngen_sincosf" : "dyngen_sincos";
-  const bool lanes = std::any_of(result.counts.begin(), result.counts.end(),
+/// The header's words on the code's structure.
+std::string structure_words(Structure structure, const std::vector<FunctionCounts>& counts) {
+  const bool lanes = std::any_of(counts.begin(), counts.end(),
                                  [](const FunctionCounts& c) { return c.lane_blocks > 0; });
-  const std::string structure =
-      (lanes ? std::string("repeated limbs computed in lanes of GCC's and clang's vector types") +
-                   (options.structure == Structure::Auto ? ", other " : "")
-             : std::string()) +
-      (options.structure == Structure::Shared ? "repeated link sections call shared functions"
-       : options.structure == Structure::Auto
-           ? "big functions' repeated link sections call shared functions"
-       : lanes ? ""
-               : "every link section in place");
-  const std::string header = ns + (dialect.c() ? "_dynamics.h" : "_dynamics.hpp");
-  const std::string source = ns + (dialect.c() ? "_dynamics.c" : "_dynamics.cpp");
-  // the package's files under a banner
-  auto package = [&](const std::string& banner) {
-    std::vector<GeneratedFile> files;
-    const std::string code_banner = commented(banner, "//");
-    const std::map<std::string, std::string> header_values{
-        {"banner", code_banner},
-        {"robot", safe_text(robot.name)},
-        {"scalar", scalar},
-        {"sincos", sincos},
-        {"structure", structure},
-        {"gravity", fmt::format("({}, {}, {}) m/s^2", g.x, g.y, g.z)},
-        {"nq", std::to_string(model.nq)},
-        {"nv", std::to_string(model.nv)},
-        {"arrays", array_docs(options.algorithms, free_joints, dialect)},
-        {"frames", frame_declarations(model, dialect)},
-        {"declarations", declarations}};
-    if (dialect.c()) {
-      std::map<std::string, std::string> values = header_values;
-      values.insert({{"name", ns}, {"NAME", upper(ns)}});
-      files.push_back({header, fill("dynamics.h.in", values)});
-      files.push_back({source, fill("dynamics.c.in",
+  const std::string in_lanes =
+      lanes ? std::string("repeated limbs computed in lanes of GCC's and clang's vector types") +
+                  (structure == Structure::Auto ? ", other " : "")
+            : std::string();
+  if (structure == Structure::Shared)
+    return in_lanes + "repeated link sections call shared functions";
+  if (structure == Structure::Auto)
+    return in_lanes + "big functions' repeated link sections call shared functions";
+  return lanes ? in_lanes : "every link section in place";
+}
+
+/// The header and source of the package's code, C or C++.
+void add_code_files(std::vector<GeneratedFile>& files, const PackageContext& p,
+                    const FunctionTexts& text, const std::vector<FunctionCounts>& counts,
+                    const std::string& code_banner) {
+  const Dialect& dialect = p.dialect;
+  const Vec3<double>& g = p.model.gravity;
+  std::map<std::string, std::string> header{
+      {"banner", code_banner},
+      {"robot", safe_text(p.robot.name)},
+      {"scalar", p.scalar},
+      {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
+      {"structure", structure_words(p.options.structure, counts)},
+      {"gravity", fmt::format("({}, {}, {}) m/s^2", g.x, g.y, g.z)},
+      {"nq", std::to_string(p.model.nq)},
+      {"nv", std::to_string(p.model.nv)},
+      {"arrays", array_docs(p.options.algorithms, free_joint_lines(p.model), dialect)},
+      {"frames", frame_declarations(p.model, dialect)},
+      {"declarations", text.declarations}};
+  const std::string joint_trig = emit_joint_trig(p.model, p.single, dialect);
+  if (dialect.c()) {
+    header.insert({{"name", p.ns}, {"NAME", upper(p.ns)}});
+    files.push_back({p.header, fill("dynamics.h.in", header)});
+    files.push_back({p.source, fill("dynamics.c.in",
                                     {{"banner", code_banner},
-                                     {"name", ns},
-                                     {"NAME", upper(ns)},
-                                     {"scalar", scalar},
-                                     {"joint_names", joint_names},
-                                     {"frame_names", frame_names_definition(model, dialect)},
-                                     {"joint_trig", emit_joint_trig(model, single, dialect)},
-                                     {"definitions", definitions}})});
-    } else {
-      std::map<std::string, std::string> values = header_values;
-      values.insert({{"namespace", ns}, {"joint_names", joint_names}});
-      files.push_back({header, fill("dynamics.hpp.in", values)});
-      files.push_back(
-          {source,
-           fill("dynamics.cpp.in",
-                {{"banner", code_banner},
-                 {"name", ns},
-                 {"namespace", ns},
-                 {"scalar", scalar},
-                 {"joint_trig", emit_joint_trig(model, single, dialect)},
-                 {"kernels_include", calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
-                 {"definitions", definitions}})});
-    }
-    if (batch_dialect.batch()) {
-      const std::map<std::string, std::string> values{{"banner", code_banner},
-                                                      {"name", ns},
-                                                      {"namespace", ns},
-                                                      {"scalar", scalar},
-                                                      {"lanes", std::to_string(options.batch)}};
-      std::map<std::string, std::string> h = values, cpp = values;
-      h.insert({{"robot", safe_text(robot.name)},
-                {"sincos", sincos},
-                {"declarations", batch_declarations}});
-      cpp.insert({{"joint_trig", emit_joint_trig(model, single, batch_dialect)},
-                  {"kernels_include", calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
-                  {"definitions", batch_definitions}});
-      files.push_back({ns + "_batch.hpp", fill("batch.hpp.in", h)});
-      files.push_back({ns + "_batch.cpp", fill("batch.cpp.in", cpp)});
-    }
-    if (options.python)
-      files.push_back({ns + "_python.cpp",
-                       fill("python.cpp.in", {{"banner", code_banner},
-                                              {"name", ns},
-                                              {"namespace", ns},
-                                              {"robot", python_literal(robot.name)},
-                                              {"scalar", scalar},
-                                              {"dtype", single ? "float32" : "float64"},
-                                              {"lanes", std::to_string(options.batch)},
-                                              {"attributes", python_attributes(model)},
-                                              {"functions", python_functions}})});
-    // the runtime's own header, verbatim: both sides compute sin and cos with the same code
-    files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
-    if (calls_kernels)
-      files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
-    files.push_back(
-        {ns + "_model.hpp",
-         fill("model.hpp.in",
-              {{"banner", code_banner},
-               {"namespace", ns},
-               {"records", model_records<T>(model)},
-               {"frame_records", frame_records(model)},
-               {"frames_argument", model.frames.empty() ? "" : ", model_frames"},
-               {"gravity", gravity}})});
-    files.push_back(
-        {ns + "_check.cpp",
-         fill("check.cpp.in",
-              {{"banner", code_banner},
-               {"header", header},
-               {"batch_include",
-                batch_dialect.batch() ? fmt::format("#include \"{}_batch.hpp\"\n", ns) : ""},
-               {"name", ns},
-               {"namespace", ns},
-               {"nq", dialect.c() ? dialect.size("nq") : "::" + ns + "::nq"},
-               {"nv", dialect.c() ? dialect.size("nv") : "::" + ns + "::nv"},
-               {"joint_names",
-                "::" + (dialect.c() ? dialect.external("joint_names") : ns + "::joint_names")},
-               {"scalar", scalar},
-               {"random_states", "10000"},
-               {"extreme_states", "2000"},
-               {"cases", cases}})});
-    files.push_back(
-        {"CMakeLists.txt",
-         fill("CMakeLists.txt.in",
-              {{"banner", commented(banner, "#")},
-               {"name", ns},
-               {"NAME", upper(ns)},
-               {"standard", dialect.c() ? "C99" : "C++17"},
-               {"standard_name", dialect.c() ? "C" : "C++"},
-               {"language", dialect.c() ? "C" : "CXX"},
-               {"check_flag", dialect.c() ? "check_c_compiler_flag" : "check_cxx_compiler_flag"},
-               {"extension", dialect.c() ? "c" : "cpp"},
-               {"batch_source", batch_dialect.batch() ? fmt::format(" {}_batch.cpp", ns) : ""},
-               {"python_module",
-                options.python ? fill("python_module.cmake.in", {{"name", ns}, {"NAME", upper(ns)}})
-                               : ""},
-               {"feature", dialect.c() ? "c_std_99" : "cxx_std_17"},
-               {"language_flags", dialect.c() ? "" : " -fno-exceptions -fno-rtti"},
-               {"enable_check_language",
-                dialect.c() ? "  enable_language(CXX)  # the check is C++ (GoogleTest)\n" : ""}})});
-    return files;
+                                     {"name", p.ns},
+                                     {"NAME", upper(p.ns)},
+                                     {"scalar", p.scalar},
+                                     {"joint_names", joint_name_lines(p.model)},
+                                     {"frame_names", frame_names_definition(p.model, dialect)},
+                                     {"joint_trig", joint_trig},
+                                     {"definitions", text.definitions}})});
+    return;
+  }
+  header.insert({{"namespace", p.ns}, {"joint_names", joint_name_lines(p.model)}});
+  files.push_back({p.header, fill("dynamics.hpp.in", header)});
+  files.push_back(
+      {p.source,
+       fill("dynamics.cpp.in",
+            {{"banner", code_banner},
+             {"name", p.ns},
+             {"namespace", p.ns},
+             {"scalar", p.scalar},
+             {"joint_trig", joint_trig},
+             {"kernels_include", text.calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
+             {"definitions", text.definitions}})});
+}
+
+/// The batches' header and source, and the Python module over them.
+void add_batch_files(std::vector<GeneratedFile>& files, const PackageContext& p,
+                     const FunctionTexts& text, const std::string& code_banner) {
+  if (p.batch_dialect.batch()) {
+    const std::map<std::string, std::string> values{{"banner", code_banner},
+                                                    {"name", p.ns},
+                                                    {"namespace", p.ns},
+                                                    {"scalar", p.scalar},
+                                                    {"lanes", std::to_string(p.options.batch)}};
+    std::map<std::string, std::string> h = values, cpp = values;
+    h.insert({{"robot", safe_text(p.robot.name)},
+              {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
+              {"declarations", text.batch_declarations}});
+    cpp.insert({{"joint_trig", emit_joint_trig(p.model, p.single, p.batch_dialect)},
+                {"kernels_include", text.calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
+                {"definitions", text.batch_definitions}});
+    files.push_back({p.ns + "_batch.hpp", fill("batch.hpp.in", h)});
+    files.push_back({p.ns + "_batch.cpp", fill("batch.cpp.in", cpp)});
+  }
+  if (p.options.python)
+    files.push_back({p.ns + "_python.cpp",
+                     fill("python.cpp.in", {{"banner", code_banner},
+                                            {"name", p.ns},
+                                            {"namespace", p.ns},
+                                            {"robot", python_literal(p.robot.name)},
+                                            {"scalar", p.scalar},
+                                            {"dtype", p.single ? "float32" : "float64"},
+                                            {"lanes", std::to_string(p.options.batch)},
+                                            {"attributes", python_attributes(p.model)},
+                                            {"functions", text.python_functions}})});
+}
+
+/// The model the check rebuilds the runtime from, and the check.
+template <class T>
+void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
+                     const FunctionTexts& text, const std::string& code_banner) {
+  const Dialect& dialect = p.dialect;
+  const Vec3<double>& g = p.model.gravity;
+  files.push_back(
+      {p.ns + "_model.hpp",
+       fill("model.hpp.in",
+            {{"banner", code_banner},
+             {"namespace", p.ns},
+             {"records", model_records<T>(p.model)},
+             {"frame_records", frame_records(p.model)},
+             {"frames_argument", p.model.frames.empty() ? "" : ", model_frames"},
+             {"gravity", fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z))}})});
+  const std::string scope = "::" + p.ns + "::";
+  files.push_back(
+      {p.ns + "_check.cpp",
+       fill("check.cpp.in",
+            {{"banner", code_banner},
+             {"header", p.header},
+             {"batch_include",
+              p.batch_dialect.batch() ? fmt::format("#include \"{}_batch.hpp\"\n", p.ns) : ""},
+             {"name", p.ns},
+             {"namespace", p.ns},
+             {"nq", dialect.c() ? dialect.size("nq") : scope + "nq"},
+             {"nv", dialect.c() ? dialect.size("nv") : scope + "nv"},
+             {"joint_names",
+              "::" + (dialect.c() ? dialect.external("joint_names") : p.ns + "::joint_names")},
+             {"scalar", p.scalar},
+             {"random_states", "10000"},
+             {"extreme_states", "2000"},
+             {"cases", text.cases}})});
+}
+
+/// The package's CMakeLists.txt: the library in its language, the batches, the Python module
+/// and the check.
+GeneratedFile cmake_file(const PackageContext& p, const std::string& banner) {
+  const bool c = p.dialect.c();
+  return {"CMakeLists.txt",
+          fill("CMakeLists.txt.in",
+               {{"banner", commented(banner, "#")},
+                {"name", p.ns},
+                {"NAME", upper(p.ns)},
+                {"standard", c ? "C99" : "C++17"},
+                {"standard_name", c ? "C" : "C++"},
+                {"language", c ? "C" : "CXX"},
+                {"check_flag", c ? "check_c_compiler_flag" : "check_cxx_compiler_flag"},
+                {"extension", c ? "c" : "cpp"},
+                {"batch_source", p.batch_dialect.batch() ? fmt::format(" {}_batch.cpp", p.ns) : ""},
+                {"python_module", p.options.python ? fill("python_module.cmake.in",
+                                                          {{"name", p.ns}, {"NAME", upper(p.ns)}})
+                                                   : ""},
+                {"feature", c ? "c_std_99" : "cxx_std_17"},
+                {"language_flags", c ? "" : " -fno-exceptions -fno-rtti"},
+                {"enable_check_language",
+                 c ? "  enable_language(CXX)  # the check is C++ (GoogleTest)\n" : ""}})};
+}
+
+/// The package's files under a banner.
+template <class T>
+std::vector<GeneratedFile> package_files(const PackageContext& p, const FunctionTexts& text,
+                                         const std::vector<FunctionCounts>& counts,
+                                         const std::string& banner) {
+  std::vector<GeneratedFile> files;
+  const std::string code_banner = commented(banner, "//");
+  add_code_files(files, p, text, counts, code_banner);
+  add_batch_files(files, p, text, code_banner);
+  // the runtime's own header, verbatim: both sides compute sin and cos with the same code
+  files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
+  if (text.calls_kernels)
+    files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
+  add_check_files<T>(files, p, text, code_banner);
+  files.push_back(cmake_file(p, banner));
+  return files;
+}
+
+/// The warnings on the precision the robot leaves, and on double code for a single-precision
+/// FPU.
+template <class T>
+std::vector<std::string> precision_warnings_for(const numerics::Conditioning& c, bool with_aba,
+                                                Target target) {
+  std::vector<std::string> warnings = precision_warnings(c, with_aba, std::is_same_v<T, float>);
+  if (!std::is_same_v<T, float> && target_single_precision(target))
+    warnings.push_back(fmt::format(
+        "--target {}: its FPU computes in single precision only, so double code runs in "
+        "software floating point there, about 35 times the instructions of float (ur5's rnea: "
+        "50,346 instructions on a Cortex-M4F against 1,401 in double on a Cortex-M7 and 1,181 in "
+        "float on the M4F); generate --scalar float",
+        target_names[static_cast<int>(target)]));
+  return warnings;
+}
+
+template <class T>
+Generated generate_as(const Robot& robot, const GenerateOptions& options) {
+  // frames only where a function computes something of them
+  Model<double> model = robot.model;
+  if (std::none_of(options.algorithms.begin(), options.algorithms.end(), uses_frames))
+    model.frames.clear();
+  const bool single = std::is_same_v<T, float>;
+  const PackageContext p(robot, model, options, single);
+  const Dialect& dialect = p.dialect;
+  const std::string& ns = p.ns;
+
+  Generated result;
+  result.nframes = static_cast<int>(model.frames.size());
+  const bool with_aba = !pivot_algorithms(options.algorithms).empty();
+  const auto step = [&](const std::string& text) {
+    if (options.progress) options.progress(text);
   };
+  step("estimating the conditioning");
+  result.conditioning =
+      numerics::estimate_conditioning(model, options.conditioning_samples, 1, with_aba);
+  result.warnings = precision_warnings_for<T>(result.conditioning, with_aba, options.target);
+  FunctionTexts text;
+  std::vector<AlgorithmRange> ranges;
+  for (const Algorithm& a : options.algorithms) {
+    step(fmt::format("tracing {} ({})", a, p.scalar));
+    // the runtime's count first, so that its unsimplified trace is gone before the other's
+    const OpCounts runtime = count_ops(trace<T>(a, model, false), false);
+    const Program<T> program = traced_program<T>(p, a);
+    step(fmt::format("estimating the range of {}'s values", a));
+    ranges.push_back(check_range(robot, model, program, result.warnings));
+    const OpCounts generated = count_ops(program);
+    text.calls_kernels = text.calls_kernels || !program.graph.calls.empty();
+    const EmittedCode code = emit_code(program, model, options.structure, dialect);
+    result.counts.push_back({a, generated, runtime, code.sections, code.shared_sections,
+                             code.shared_functions, code.lane_blocks, code.lane_operations});
+    add_function(text, p, algorithm_spec(a), code, generated);
+    if (!p.batch_dialect.batch()) continue;
+    step(fmt::format("printing {} for batches of {}", a, options.batch));
+    add_batch_function(text, p, algorithm_spec(a), program);
+  }
+  if (!text.declarations.empty()) text.declarations.pop_back();
+  if (!text.batch_declarations.empty()) text.batch_declarations.pop_back();
+  const bool aba_overflows = std::any_of(ranges.begin(), ranges.end(), [](const AlgorithmRange& r) {
+    return !r.extreme_overflow.empty() && algorithm_spec(r.algorithm).divides_by_pivots;
+  });
+  result.conditioning_text =
+      conditioning_text(result.conditioning, with_aba, aba_overflows ? p.scalar.c_str() : nullptr) +
+      range_text(ranges, single);
+
   std::string banner = banner_text(robot, options, result.counts, result.conditioning_text);
   if (options.measure) {
     step("compiling the code to measure its size and stack");
     const Toolchain tools = toolchain(target_names[static_cast<int>(options.target)]);
-    result.footprint = measure_footprint(package(banner), source, options.algorithms,
-                                         dialect.c() ? ns + "_" : ns + "::", tools);
+    result.footprint =
+        measure_footprint(package_files<T>(p, text, result.counts, banner), p.source,
+                          options.algorithms, dialect.c() ? ns + "_" : ns + "::", tools);
     banner.append("\n").append(footprint_text(*result.footprint));  // GCC 12 -Wrestrict misfires on "\n" + s
   }
-  result.files = package(banner);
+  result.files = package_files<T>(p, text, result.counts, banner);
   return result;
 }
 
