@@ -18,6 +18,7 @@
 #include "firmware_report.hpp"
 #include "generate.hpp"
 #include "process.hpp"
+#include "readers.hpp"
 #include "report.hpp"
 
 using namespace dyngen;
@@ -527,7 +528,7 @@ int eval_main(int argc, char** argv) {
   app.name("dyngen eval");
   std::string input, states;
   ModelFlags flags;
-  app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
+  app.add_option("robot", input, robot_file_formats())->required();
   app.add_option("--states", states,
                  "JSON array of states {\"q\": [...], \"v\": [...], \"a\": [...]} or with "
                  "\"tau\" instead of \"a\"; - reads standard input")
@@ -555,7 +556,7 @@ int report_main(int argc, char** argv) {
   std::string input, output, algorithms = "rnea,crba,aba";
   ModelFlags flags;
   ReportOptions options;
-  app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
+  app.add_option("robot", input, robot_file_formats())->required();
   app.add_option("-o,--output", output,
                  "output directory (created if missing); the harness is built in DIR/harness")
       ->required();
@@ -603,7 +604,7 @@ int firmware_report_main(int argc, char** argv) {
   code.scalar = "float";
   ModelFlags flags;
   FirmwareReportOptions options;
-  app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
+  app.add_option("robot", input, robot_file_formats())->required();
   app.add_option("-o,--output", output,
                  "output directory (created if missing): the report, package/ and build/")
       ->required();
@@ -651,7 +652,7 @@ int main(int argc, char** argv) {
   CodeFlags code;
   ModelFlags flags;
   bool quiet = false, force = false;
-  app.add_option("robot", input, "URDF (.urdf, .xml) or chain spec (.yaml, .yml)")->required();
+  app.add_option("robot", input, robot_file_formats())->required();
   app.add_option("-o,--output", output, "output directory (created if missing)")->required();
   code.add_to(app, false);
   bool measure = false;

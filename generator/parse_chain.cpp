@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "robot.hpp"
+#include "readers.hpp"
 
 namespace dyngen::gen {
 

@@ -10,7 +10,7 @@
 #include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
-#include "robot.hpp"
+#include "readers.hpp"
 
 namespace dyngen::gen {
 
@@ -107,9 +107,7 @@ RobotDescription parse_urdf(const std::string& path, const std::string& xml) {
   RobotDescription robot;
 
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
-    throw InputError(fmt::format("{}:{}: malformed XML: {}", path, doc.ErrorLineNum(),
-                                 doc.ErrorStr()));
+  parse_xml(path, xml, doc);
   const tinyxml2::XMLElement* root = doc.FirstChildElement("robot");
   if (!root) throw InputError(fmt::format("{}: not a URDF: no <robot> element", path));
   check_no_loop(path, root);

@@ -17,7 +17,7 @@
 
 #include "dyngen/aba.hpp"
 #include "dyngen/numerics/conditioning.hpp"
-#include "process.hpp"
+#include "readers.hpp"
 
 namespace dyngen::gen {
 
@@ -59,12 +59,6 @@ void check_inertia(const std::string& path, const LinkSpec& link,
         "{}: principal moments {:.6g}, {:.6g}, {:.6g} break the triangle inequality "
         "(I1 + I2 >= I3); used as given",
         where, lambda[0], lambda[1], lambda[2]));
-}
-
-bool has_extension(const std::string& path, std::initializer_list<const char*> exts) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return std::any_of(exts.begin(), exts.end(), [&](const char* e) { return ext == e; });
 }
 
 }  // namespace
@@ -269,25 +263,7 @@ Robot load_robot(const std::string& path, const LoadOptions& options) {
 }
 
 Robot parse_robot(const std::string& path, const std::string& text, const LoadOptions& options) {
-  RobotDescription description;
-  if (has_extension(path, {".urdf", ".xml"})) {
-    description = parse_urdf(path, text);
-  } else if (has_extension(path, {".yaml", ".yml"})) {
-    description = parse_chain(path, text);
-  } else if (has_extension(path, {".xacro"})) {
-    // ur5.urdf.xacro: a URDF written with macros, which ROS's xacro expands
-    std::string urdf = std::filesystem::path(path).stem().string();
-    if (!has_extension(urdf, {".urdf"})) urdf += ".urdf";
-    throw InputError(fmt::format(
-        "{}: a xacro file (a URDF with macros): expand it to a URDF first, with ROS's xacro "
-        "(xacro {} > {}), and give dyngen the .urdf",
-        path, shell_word(path), shell_word(urdf)));
-  } else {
-    throw InputError(fmt::format(
-        "{}: unknown kind of robot file (expected .urdf or .xml for URDF, .yaml or .yml for a "
-        "chain spec)",
-        path));
-  }
+  RobotDescription description = reader_for(path, text).parse(path, text);
 
   const std::size_t joints = description.builder.joints().size();
   const std::size_t links = description.builder.links().size();

@@ -1,5 +1,5 @@
-// Reading a robot: URDF (through urdfdom) or a chain spec (YAML), checked, with the requested
-// joints locked, built into the runtime's Model by the runtime's own builder.
+// Reading a robot: URDF (through urdfdom) or a chain spec (YAML), chosen by readers.hpp, checked,
+// with the requested joints locked, built into the runtime's Model by the runtime's own builder.
 #pragma once
 
 #include <optional>
@@ -31,10 +31,6 @@ struct RobotDescription {
   std::vector<std::string> warnings;
   std::vector<std::pair<std::string, std::string>> mimics;  // (joint, the joint it mimics)
 };
-
-/// The robot in `text`, read from `path` (which messages name).
-RobotDescription parse_urdf(const std::string& path, const std::string& text);
-RobotDescription parse_chain(const std::string& path, const std::string& text);
 
 /// A file's bytes; InputError naming the path and the system's reason when it cannot be read.
 std::string read_file(const std::string& path);
@@ -74,10 +70,11 @@ inline constexpr const char* default_frames_rule =
 /// 10 to 30 s and up to 1.4 GB; eval's mass matrix alone is then 800 MB.
 inline constexpr int max_joints = 10000, max_nv = 10000;
 
-/// Reads a URDF (.urdf, .xml) or a chain spec (.yaml, .yml) and builds its model.
+/// Reads a robot file in one of the formats of readers.hpp and builds its model.
 Robot load_robot(const std::string& path, const LoadOptions& options = {});
 
-/// The same for a file's text, read from `path` (whose extension says the format).
+/// The same for a file's text, read from `path` (whose extension, and for .xml the root
+/// element, says the format).
 Robot parse_robot(const std::string& path, const std::string& text, const LoadOptions& options);
 
 /// Joints whose articulated inertia D vanishes (ABA would divide by zero): D <= 1e-12 of the
