@@ -38,7 +38,7 @@ constexpr int many_states = 1024;  // per call of f_many
 constexpr std::uint64_t seed = 20261127;
 constexpr double tolerance = 1e-8;  // relative, against the runtime, as dyngen_bench's
 
-constexpr Algorithm algorithms[] = {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba};
+const std::vector<Algorithm>& algorithms = compared_algorithms();
 
 /// The table's columns: what is timed, one benchmark each.
 enum Column {
@@ -96,9 +96,10 @@ template <class Scalar>
 void call(const Dynamics<Scalar>& f, Algorithm a, const Inputs<Scalar>& in, int k, Scalar* out) {
   const int q0 = k * in.nq * in.lanes, v0 = k * in.nv * in.lanes;  // call k's first entries
   switch (a) {
-    case Algorithm::Rnea: f.rnea(&in.q[q0], &in.qd[v0], &in.qdd[v0], out); break;
-    case Algorithm::Crba: f.crba(&in.q[q0], out); break;
-    case Algorithm::Aba: f.aba(&in.q[q0], &in.qd[v0], &in.tau[v0], out); break;
+    case Computes::Other: break;
+    case Computes::InverseDynamics: f.rnea(&in.q[q0], &in.qd[v0], &in.qdd[v0], out); break;
+    case Computes::MassMatrix: f.crba(&in.q[q0], out); break;
+    case Computes::ForwardDynamics: f.aba(&in.q[q0], &in.qd[v0], &in.tau[v0], out); break;
   }
 }
 
@@ -107,9 +108,14 @@ template <class Scalar>
 void call(const ManyDynamics<Scalar>& f, Algorithm a, const Inputs<Scalar>& in, Scalar* out) {
   const long count = static_cast<long>(in.q.size()) / in.nq;
   switch (a) {
-    case Algorithm::Rnea: f.rnea(count, in.q.data(), in.qd.data(), in.qdd.data(), out); break;
-    case Algorithm::Crba: f.crba(count, in.q.data(), out); break;
-    case Algorithm::Aba: f.aba(count, in.q.data(), in.qd.data(), in.tau.data(), out); break;
+    case Computes::Other: break;
+    case Computes::InverseDynamics:
+      f.rnea(count, in.q.data(), in.qd.data(), in.qdd.data(), out);
+      break;
+    case Computes::MassMatrix: f.crba(count, in.q.data(), out); break;
+    case Computes::ForwardDynamics:
+      f.aba(count, in.q.data(), in.qd.data(), in.tau.data(), out);
+      break;
   }
 }
 
@@ -287,7 +293,13 @@ std::string format_rate(std::optional<double> x) {
   return format(x, x && *x >= 100 ? "%.0f" : "%.3g");
 }
 
-constexpr const char* table_functions[] = {"rnea", "crba", "aba", "joint_trig"};
+/// The table's rows: the compared algorithms, then joint_trig (the sines and cosines alone).
+std::vector<const char*> table_functions() {
+  std::vector<const char*> functions;
+  for (const Algorithm a : algorithms) functions.push_back(algorithm_name(a));
+  functions.push_back("joint_trig");
+  return functions;
+}
 
 /// The tables of the run: states per second and the speed-ups; the share of sin and cos.
 std::string table(const std::vector<std::unique_ptr<Subject>>& subjects,
@@ -310,7 +322,7 @@ std::string table(const std::vector<std::unique_ptr<Subject>>& subjects,
   for (int c = 0; c < column_count + 5; ++c) md << "---:|";
   md << "\n";
   for (const auto& s : subjects) {
-    for (const char* f : table_functions) {
+    for (const char* f : table_functions()) {
       std::optional<double> r[column_count];
       for (int c = 0; c < column_count; ++c) r[c] = rate(*s, f, static_cast<Column>(c));
       if (!r[ScalarDouble]) continue;  // filtered out

@@ -38,8 +38,7 @@ constexpr int state_count = 256;  // cycled through, so the inputs change every 
 constexpr std::uint64_t seed = 20261121;
 constexpr double tolerance = 1e-8;  // of the check against the runtime (the peers pass 1e-9)
 
-constexpr Algorithm Rnea = Algorithm::Rnea, Crba = Algorithm::Crba, Aba = Algorithm::Aba;
-constexpr Algorithm algorithms[] = {Rnea, Crba, Aba};
+const std::vector<Algorithm>& algorithms = compared_algorithms();
 enum Implementation { Generated, Snapped, Unrolled, Copy, Runtime, Mujoco, Kdl };
 constexpr const char* implementation_names[] = {"generated", "snapped", "unrolled", "copy",
                                                 "runtime",   "mujoco",  "kdl"};
@@ -134,7 +133,9 @@ std::unique_ptr<Subject> make_subject(const Package& p) {
 /// Operations per call (add, mul, div, neg, sin and cos together) of the generated code and of
 /// the runtime, from the banner of NAME_dynamics.hpp.
 struct OperationCounts {
-  long generated[3] = {}, runtime[3] = {};
+  std::map<Algorithm, long> generated_, runtime_;  // none where the banner has none
+  long generated(Algorithm a) const { return generated_.contains(a) ? generated_.at(a) : 0; }
+  long runtime(Algorithm a) const { return runtime_.contains(a) ? runtime_.at(a) : 0; }
 };
 
 OperationCounts operation_counts(const char* header) {
@@ -145,19 +146,19 @@ OperationCounts operation_counts(const char* header) {
   const std::regex algorithm_line(R"(^//\s+(\w+)$)");
   const std::regex count_line(R"(^//\s+(generated|runtime):\s+(.*)$)");
   const std::regex count(R"([a-z]+ (\d+))");
-  int algorithm = -1;
+  std::optional<Algorithm> algorithm;
   for (std::string text; std::getline(in, text) && text.starts_with("//");) {
     std::smatch m;
     if (std::regex_match(text, m, algorithm_line)) {
-      algorithm = m[1] == "rnea" ? 0 : m[1] == "crba" ? 1 : m[1] == "aba" ? 2 : -1;
+      algorithm = compared_algorithm(m[1].str());
       continue;
     }
-    if (algorithm < 0 || !std::regex_match(text, m, count_line)) continue;
+    if (!algorithm || !std::regex_match(text, m, count_line)) continue;
     long total = 0;
     const std::string list = m[2];
     for (std::sregex_iterator it(list.begin(), list.end(), count), end; it != end; ++it)
       total += std::stol((*it)[1]);
-    (m[1] == "generated" ? counts.generated : counts.runtime)[algorithm] = total;
+    (m[1] == "generated" ? counts.generated_ : counts.runtime_)[*algorithm] = total;
   }
   return counts;
 }
@@ -235,8 +236,7 @@ void write_robust_speed(std::ostream& md, const std::vector<std::unique_ptr<Subj
     for (const Algorithm a : algorithms) {
       const auto g = time(p, a, Generated), c = time(p, a, Copy), sn = time(p, a, Snapped);
       if (!g || !c) continue;  // filtered out
-      const long n = ops.generated[static_cast<int>(a)],
-                 n_snapped = snapped_ops.generated[static_cast<int>(a)];
+      const long n = ops.generated(a), n_snapped = snapped_ops.generated(a);
       const double removed = 1.0 - static_cast<double>(n_snapped) / static_cast<double>(n);
       const auto copy_spread = spread(paired_ratio(*s->generated, *s->copy, a));
       const auto snapped_spread =
@@ -323,9 +323,9 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
          << format_ratio(r, g) << " | " << format_ratio(m, g) << " | " << format_ratio(k, g)
          << " | " << format_ratio(r, sn) << " | " << format_ratio(m, sn) << " | "
          << format_ratio(k, sn) << " | " << format_ratio(r, u) << " | " << format_ratio(u, g)
-         << " | " << format_ratio(k, r) << " | " << ops.generated[static_cast<int>(a)] << " | "
-         << (p.snapped_header ? std::to_string(snapped_ops.generated[static_cast<int>(a)]) : "-") << " | "
-         << ops.runtime[static_cast<int>(a)] << " |\n";
+         << " | " << format_ratio(k, r) << " | " << ops.generated(a) << " | "
+         << (p.snapped_header ? std::to_string(snapped_ops.generated(a)) : "-") << " | "
+         << ops.runtime(a) << " |\n";
     }
   }
   write_robust_speed(md, subjects, time);
@@ -349,7 +349,7 @@ void write_results(const std::string& dir, const std::vector<std::unique_ptr<Sub
           const auto t = time(p, a, i);
           gp << " " << (t ? std::to_string(*t) : "NaN");
         }
-        gp << " " << ops.generated[static_cast<int>(a)] << " " << ops.runtime[static_cast<int>(a)] << "\n";
+        gp << " " << ops.generated(a) << " " << ops.runtime(a) << "\n";
       }
       gp << "EOD\n";
     }

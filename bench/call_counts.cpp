@@ -64,12 +64,6 @@ constexpr std::uint64_t seed = 20261121;
 constexpr const char* implementations[] = {"generated", "snapped", "unrolled", "runtime",
                                            "hand-written"};
 
-std::optional<Algorithm> algorithm_named(const std::string& name) {
-  for (const Algorithm a : {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba})
-    if (name == algorithm_name(a)) return a;
-  return std::nullopt;
-}
-
 const Package& package_named(const std::string& name) {
   for (const Package& p : packages())
     if (name == p.name) return p;
@@ -111,9 +105,10 @@ void call_runtime(void* r, const numerics::State& s, double* out) {
   Runtime& x = *static_cast<Runtime*>(r);
   const std::size_t nv = x.model.nv;
   switch (x.a) {
-    case Algorithm::Rnea: rnea<double>(x.model, x.ws, s.q, s.qd, s.qdd, {out, nv}); break;
-    case Algorithm::Crba: crba<double>(x.model, x.ws, s.q, {out, nv * nv}); break;
-    case Algorithm::Aba: aba<double>(x.model, x.ws, s.q, s.qd, s.tau, {out, nv}); break;
+    case Computes::Other: break;
+    case Computes::InverseDynamics: rnea<double>(x.model, x.ws, s.q, s.qd, s.qdd, {out, nv}); break;
+    case Computes::MassMatrix: crba<double>(x.model, x.ws, s.q, {out, nv * nv}); break;
+    case Computes::ForwardDynamics: aba<double>(x.model, x.ws, s.q, s.qd, s.tau, {out, nv}); break;
   }
 }
 
@@ -125,9 +120,10 @@ struct HandWritten {
 void call_hand_written(void* h, const numerics::State& s, double* out) {
   HandWritten& x = *static_cast<HandWritten*>(h);
   switch (x.a) {
-    case Algorithm::Rnea: x.chain.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out); break;
-    case Algorithm::Crba: x.chain.crba(s.q.data(), out); break;
-    case Algorithm::Aba: x.chain.aba(s.q.data(), s.qd.data(), s.tau.data(), out); break;
+    case Computes::Other: break;
+    case Computes::InverseDynamics: x.chain.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out); break;
+    case Computes::MassMatrix: x.chain.crba(s.q.data(), out); break;
+    case Computes::ForwardDynamics: x.chain.aba(s.q.data(), s.qd.data(), s.tau.data(), out); break;
   }
 }
 
@@ -241,7 +237,7 @@ int report(const std::string& counts_file, const std::filesystem::path& output) 
   for (const Package& p : packages()) {
     if (!ir.count(p.name)) continue;
     std::fprintf(stderr, "  %s\n", p.name);
-    for (const Algorithm a : {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba}) {
+    for (const Algorithm a : compared_algorithms()) {
       const std::string name = algorithm_name(a);
       if (!ir[p.name].count(name)) continue;
       const std::map<std::string, double>& per_call = ir[p.name][name];
@@ -290,13 +286,16 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (args.size() == 3 && args[0] == "--report") return report(args[1], args[2]);
-  if (args.size() == 4 && algorithm_named(args[2]))
-    return measure(args[0], args[1], *algorithm_named(args[2]), std::atol(args[3].c_str()));
-  std::fprintf(stderr,
-               "usage: dyngen_call_counts --list\n"
-               "       dyngen_call_counts PACKAGE generated|snapped|unrolled|runtime|hand-written|none "
-               "rnea|crba|aba CALLS\n"
-               "       dyngen_call_counts --report COUNTS OUTPUT_DIR\n");
+  if (args.size() == 4 && compared_algorithm(args[2]))
+    return measure(args[0], args[1], *compared_algorithm(args[2]), std::atol(args[3].c_str()));
+  std::vector<const char*> names;
+  for (const Algorithm a : compared_algorithms()) names.push_back(algorithm_name(a));
+  fmt::print(stderr,
+             "usage: dyngen_call_counts --list\n"
+             "       dyngen_call_counts PACKAGE generated|snapped|unrolled|runtime|hand-written|none "
+             "{} CALLS\n"
+             "       dyngen_call_counts --report COUNTS OUTPUT_DIR\n",
+             fmt::join(names, "|"));
   return 2;
 }
 

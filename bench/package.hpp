@@ -49,9 +49,10 @@ inline gen::LoadOptions load_options(const Package& p, bool snapped = false) {
 /// One call of a generated function at state s: tau, M (row-major) or qdd into out.
 inline void call(const Functions& f, Algorithm a, const numerics::State& s, double* out) {
   switch (a) {
-    case Algorithm::Rnea: f.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out); break;
-    case Algorithm::Crba: f.crba(s.q.data(), out); break;
-    case Algorithm::Aba: f.aba(s.q.data(), s.qd.data(), s.tau.data(), out); break;
+    case Computes::Other: break;
+    case Computes::InverseDynamics: f.rnea(s.q.data(), s.qd.data(), s.qdd.data(), out); break;
+    case Computes::MassMatrix: f.crba(s.q.data(), out); break;
+    case Computes::ForwardDynamics: f.aba(s.q.data(), s.qd.data(), s.tau.data(), out); break;
   }
 }
 

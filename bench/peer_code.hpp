@@ -29,7 +29,7 @@ namespace dyngen::bench {
 using numerics::Random;
 using numerics::State;
 
-inline int output_size(Algorithm a, int nv) { return a == Algorithm::Crba ? nv * nv : nv; }
+inline int output_size(Algorithm a, int nv) { return a == Computes::MassMatrix ? nv * nv : nv; }
 
 inline Eigen::Map<const Eigen::VectorXd> vec(const std::vector<double>& x) {
   return {x.data(), static_cast<Eigen::Index>(x.size())};
@@ -40,9 +40,10 @@ inline std::vector<double> reference(const Model<double>& model, Algorithm a, co
   Workspace<double> ws(model);
   std::vector<double> out(output_size(a, model.nv));
   switch (a) {
-    case Algorithm::Rnea: rnea<double>(model, ws, s.q, s.qd, s.qdd, out); break;
-    case Algorithm::Crba: crba<double>(model, ws, s.q, out); break;
-    case Algorithm::Aba: aba<double>(model, ws, s.q, s.qd, s.tau, out); break;
+    case Computes::Other: break;
+    case Computes::InverseDynamics: rnea<double>(model, ws, s.q, s.qd, s.qdd, out); break;
+    case Computes::MassMatrix: crba<double>(model, ws, s.q, out); break;
+    case Computes::ForwardDynamics: aba<double>(model, ws, s.q, s.qd, s.tau, out); break;
   }
   return out;
 }
@@ -59,9 +60,10 @@ class RuntimeCode {
     const State& s = states_[k];
     const std::span<double> out(out_.data(), output_size(a, model_.nv));
     switch (a) {
-      case Algorithm::Rnea: rnea<double>(model_, ws_, s.q, s.qd, s.qdd, out); break;
-      case Algorithm::Crba: crba<double>(model_, ws_, s.q, out); break;
-      case Algorithm::Aba: aba<double>(model_, ws_, s.q, s.qd, s.tau, out); break;
+      case Computes::Other: break;
+      case Computes::InverseDynamics: rnea<double>(model_, ws_, s.q, s.qd, s.qdd, out); break;
+      case Computes::MassMatrix: crba<double>(model_, ws_, s.q, out); break;
+      case Computes::ForwardDynamics: aba<double>(model_, ws_, s.q, s.qd, s.tau, out); break;
     }
   }
 
@@ -124,17 +126,18 @@ class MujocoCode {
     mj_kinematics(m, d);
     mj_comPos(m, d);
     switch (a) {
-      case Algorithm::Rnea:
+      case Computes::Other: break;
+      case Computes::InverseDynamics:
         mju_copy(d->qvel, &qvel_[k * nv], nv);
         mju_copy(d->qacc, &qacc_[k * nv], nv);
         mj_comVel(m, d);
         mj_rne(m, d, 1, out_.data());
         break;
-      case Algorithm::Crba:
+      case Computes::MassMatrix:
         mj_crb(m, d);
         mj_fullM(m, out_.data(), d->qM);
         break;
-      case Algorithm::Aba:
+      case Computes::ForwardDynamics:
         mju_copy(d->qvel, &qvel_[k * nv], nv);
         mju_copy(d->qfrc_applied, &qfrc_[k * nv], nv);
         mj_crb(m, d);
@@ -157,13 +160,16 @@ class MujocoCode {
     const Eigen::Map<const Eigen::VectorXd> out(out_.data(), output_size(a, nv));
     Eigen::VectorXd got;
     switch (a) {
-      case Algorithm::Rnea: got = A.transpose() * out; break;
-      case Algorithm::Crba: {
+      case Computes::Other: break;
+      case Computes::InverseDynamics: got = A.transpose() * out; break;
+      case Computes::MassMatrix: {
         const Eigen::MatrixXd M = out.reshaped<Eigen::RowMajor>(nv, nv);
         got = (A.transpose() * M * A).reshaped<Eigen::RowMajor>();
         break;
       }
-      case Algorithm::Aba: got = A.transpose() * (out - peer_.free_joint_bias(s.q, s.qd)); break;
+      case Computes::ForwardDynamics:
+        got = A.transpose() * (out - peer_.free_joint_bias(s.q, s.qd));
+        break;
     }
     return test::relative_error(got, vec(reference(model_, a, s)));
   }
@@ -218,18 +224,21 @@ class KdlCode {
 
   bool is_chain() const { return chain_.has_value(); }
 
-  bool has(Algorithm a) const { return a == Algorithm::Rnea || chain_; }
+  bool has(Algorithm a) const { return a == Computes::InverseDynamics || chain_; }
 
   void run(Algorithm a, int k) {
     switch (a) {
-      case Algorithm::Rnea:
+      case Computes::Other: break;
+      case Computes::InverseDynamics:
         if (chain_)
           chain_id_->CartToJnt(q_[k], qd_[k], qdd_[k], no_wrenches_, out_);
         else
           tree_id_->CartToJnt(q_[k], qd_[k], qdd_[k], no_wrench_map_, out_);
         break;
-      case Algorithm::Crba: chain_param_->JntToMass(q_[k], M_); break;
-      case Algorithm::Aba: chain_fd_->CartToJnt(q_[k], qd_[k], tau_[k], no_wrenches_, out_); break;
+      case Computes::MassMatrix: chain_param_->JntToMass(q_[k], M_); break;
+      case Computes::ForwardDynamics:
+        chain_fd_->CartToJnt(q_[k], qd_[k], tau_[k], no_wrenches_, out_);
+        break;
     }
   }
 
@@ -244,12 +253,15 @@ class KdlCode {
     const std::vector<double> expected = reference(model_, a, state);
     const int nv = model_.nv;
     switch (a) {
-      case Algorithm::Rnea: return test::relative_error(out_.data, s.G.transpose() * vec(expected));
-      case Algorithm::Crba: {
+      case Computes::Other: break;
+      case Computes::InverseDynamics:
+        return test::relative_error(out_.data, s.G.transpose() * vec(expected));
+      case Computes::MassMatrix: {
         const Eigen::MatrixXd M = vec(expected).reshaped<Eigen::RowMajor>(nv, nv);
         return test::relative_error(M_.data.reshaped(), (s.G.transpose() * M * s.G).reshaped());
       }
-      case Algorithm::Aba: return test::relative_error(s.G * out_.data + s.Gdot_qd, vec(expected));
+      case Computes::ForwardDynamics:
+        return test::relative_error(s.G * out_.data + s.Gdot_qd, vec(expected));
     }
     return NAN;
   }

@@ -25,9 +25,10 @@ inline OpTally count_planar_chain(const Model<double>& model, Algorithm a) {
   std::vector<Counted> out(model.nv * model.nv);
   const CountScope scope;
   switch (a) {
-    case Algorithm::Rnea: chain.rnea(q.data(), qd.data(), qdd.data(), out.data()); break;
-    case Algorithm::Crba: chain.crba(q.data(), out.data()); break;
-    case Algorithm::Aba: chain.aba(q.data(), qd.data(), tau.data(), out.data()); break;
+    case Computes::Other: break;
+    case Computes::InverseDynamics: chain.rnea(q.data(), qd.data(), qdd.data(), out.data()); break;
+    case Computes::MassMatrix: chain.crba(q.data(), out.data()); break;
+    case Computes::ForwardDynamics: chain.aba(q.data(), qd.data(), tau.data(), out.data()); break;
   }
   return scope.counts();
 }

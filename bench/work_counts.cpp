@@ -37,7 +37,7 @@ namespace {
 
 
 constexpr int chain_links[] = {WORK_COUNT_LINKS};
-constexpr Algorithm algorithms[] = {Algorithm::Rnea, Algorithm::Crba, Algorithm::Aba};
+const std::vector<Algorithm>& algorithms = compared_algorithms();
 
 /// Operations by kind, as the counting scalar tallies them; traces have no sqrt, so theirs is 0.
 using Kinds = OpTally;
@@ -78,7 +78,7 @@ struct DerivativeRow {
 /// The robots of issue 13's targets.
 constexpr const char* derivative_robots[] = {"ur5", "iiwa14", "solo12", "atlas"};
 
-long seed_work(Algorithm a, long n) { return a == Algorithm::Crba ? n * (n + 1) / 2 : n; }
+long seed_work(Algorithm a, long n) { return a == Computes::MassMatrix ? n * (n + 1) / 2 : n; }
 
 /// Generated-code operations of the mass matrix and/or the bias h = RNEA(q, v, 0), traced into
 /// one graph as one emitted function would compute them: with both, the sin, cos and joint
@@ -380,8 +380,8 @@ int run(const std::filesystem::path& output) {
           count_model(name, std::string(kind) + "_chain", "fixed", model);
       rows.insert(rows.end(), counted.begin(), counted.end());
       DenseRow d{name, model.nv, {}, {}, {}, {}, {}};
-      d.aba = find(counted, name, Algorithm::Aba).generated;
-      d.crba = find(counted, name, Algorithm::Crba).generated;
+      d.aba = find(counted, name, Computes::ForwardDynamics).generated;
+      d.crba = find(counted, name, Computes::MassMatrix).generated;
       d.bias = dense_trace_counts(model, false, true);
       d.crba_and_bias = dense_trace_counts(model, true, true);
       d.solve = dense_solve_counts(model);

@@ -1052,10 +1052,16 @@ Generated generate(const Robot& robot, const GenerateOptions& options) {
   }
   if (const std::string which = pivot_algorithms(options.algorithms); !which.empty()) {
     if (options.progress) options.progress("checking that ABA's pivots are defined");
-    std::string rest;
-    for (const Algorithm& a : options.algorithms)
-      if (!algorithm_spec(a).divides_by_pivots) rest += (rest.empty() ? "" : ",") + a;
-    const std::string without = "--algorithms " + (rest.empty() ? std::string("rnea,crba") : rest);
+    const auto well_defined = [](const std::vector<Algorithm>& algorithms) {
+      std::string text;
+      for (const Algorithm& a : algorithms)
+        if (!algorithm_spec(a).divides_by_pivots) text += (text.empty() ? "" : ",") + a;
+      return text;
+    };
+    // with none left, those of the default set
+    std::string rest = well_defined(options.algorithms);
+    if (rest.empty()) rest = well_defined(default_algorithm_names());
+    const std::string without = "--algorithms " + rest;
     if (!joints_blocking_aba(robot.model).empty())
       throw InputError(fmt::format(
           "{}: {}, or leave {} out ({}); RNEA and CRBA are well defined.", robot.path,

@@ -351,8 +351,8 @@ std::string frames_text(const Robot& robot, const ModelFlags& flags,
 
 /// The options that choose the code, shared by generation and firmware-report.
 struct CodeFlags {
-  std::string algorithms = "rnea,crba,aba", scalar = "double", name, structure = "auto",
-              target = "host", lang = "c++", jacobian_frame = "world";
+  std::string algorithms = comma_list(default_algorithm_names()), scalar = "double", name,
+              structure = "auto", target = "host", lang = "c++", jacobian_frame = "world";
   int batch = 0;
   bool python = false;
 
@@ -553,7 +553,7 @@ int report_main(int argc, char** argv) {
                "with FMA and with -ffast-math, and of CRBA+LDLT, and writes report.md, "
                "report.json and report.svg"};
   app.name("dyngen report");
-  std::string input, output, algorithms = "rnea,crba,aba";
+  std::string input, output, algorithms = comma_list(default_algorithm_names());
   ModelFlags flags;
   ReportOptions options;
   app.add_option("robot", input, robot_file_formats())->required();

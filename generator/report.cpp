@@ -32,14 +32,22 @@ bool has(const std::vector<Algorithm>& algorithms, Algorithm a) {
   return std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end();
 }
 
-/// Whether forward dynamics is measured through CRBA+LDLT too: with ABA, CRBA and RNEA.
-bool with_ldlt(const std::vector<Algorithm>& algorithms) {
-  return has(algorithms, "aba") && has(algorithms, "crba") && has(algorithms, "rnea");
+/// Whether the table's entry that computes c is among the algorithms.
+bool has(const std::vector<Algorithm>& algorithms, Computes c) {
+  const AlgorithmSpec<double>* spec = find_algorithm<double>(c);
+  return spec && has(algorithms, Algorithm(spec->name));
 }
 
-/// Whether the CRBA+LDLT variant can be built from these generated algorithms.
+/// Whether the CRBA+LDLT variant can be built from these generated algorithms: with the mass
+/// matrix and inverse dynamics, whose solve gives forward dynamics.
 bool with_ldlt_in(const std::vector<Algorithm>& generated) {
-  return has(generated, "crba") && has(generated, "rnea");
+  return has(generated, Computes::MassMatrix) && has(generated, Computes::InverseDynamics);
+}
+
+/// Whether forward dynamics is measured through CRBA+LDLT too: when the algorithms have it
+/// and what the variant is built from.
+bool with_ldlt(const std::vector<Algorithm>& algorithms) {
+  return has(algorithms, Computes::ForwardDynamics) && with_ldlt_in(algorithms);
 }
 
 }  // namespace
@@ -86,18 +94,17 @@ numerics::Conditioning write_variant(const Robot& robot, const ReportOptions& op
 }
 
 std::string algorithm_title(const std::string& a) {
-  if (a == "rnea") return "RNEA (inverse dynamics, tau)";
-  if (a == "crba") return "CRBA (mass matrix, M)";
-  if (a == "aba") return "ABA (forward dynamics, qdd)";
+  const AlgorithmSpec<double>& spec = algorithm_spec(a);
+  if (!spec.title.empty()) return std::string(spec.title);
   std::string outputs;
-  for (const ArraySpec& y : algorithm_spec(a).outputs)
+  for (const ArraySpec& y : spec.outputs)
     outputs += (outputs.empty() ? "" : ", ") + std::string(y.name);
   return fmt::format("{} ({})", a, outputs);
 }
 
 /// The harness's registrations of every variant of each algorithm: the runtime and the
-/// generated code in double (exact, FMA, fast-math) and float, and for ABA, when CRBA and RNEA
-/// are generated too, CRBA+LDLT.
+/// generated code in double (exact, FMA, fast-math) and float, and for forward dynamics, when
+/// the mass matrix and inverse dynamics are generated too, CRBA+LDLT.
 std::string harness_variants(const std::vector<Algorithm>& algorithms,
                              const std::vector<Algorithm>& in_float, const std::string& name) {
   std::string text;
@@ -120,15 +127,16 @@ std::string harness_variants(const std::vector<Algorithm>& algorithms,
     text += fmt::format("  add_runtime<float>(\"{}\");\n", a);
     if (has(in_float, a))
       text += "  " + generated("float", name + "_float", "generated float");
-    if (a != "aba" || !with_ldlt(algorithms)) continue;
-    const auto ldlt = [](const char* scalar, const std::string& ns) {
+    if (spec.computes != Computes::ForwardDynamics || !with_ldlt(algorithms)) continue;
+    const auto ldlt = [&](const char* scalar, const std::string& ns) {
       return fmt::format(
-          "  add<{0}>(\"aba\", \"generated CRBA+LDLT {0}\",\n"
+          "  add<{0}>(\"{2}\", \"generated CRBA+LDLT {0}\",\n"
           "           [](const {0}* const* x, {0}* const* y) {{\n"
-          "             ldlt_forward_dynamics<{0}>(::{1}::nv, ::{1}::crba, ::{1}::rnea, x[0],\n"
+          "             ldlt_forward_dynamics<{0}>(::{1}::nv, ::{1}::{3}, ::{1}::{4}, x[0],\n"
           "                                        x[1], x[2], y[0]);\n"
           "           }});\n",
-          scalar, ns);
+          scalar, ns, a, find_algorithm<double>(Computes::MassMatrix)->name,
+          find_algorithm<double>(Computes::InverseDynamics)->name);
     };
     text += ldlt("double", name);
     // in float only where float's CRBA and RNEA are generated

@@ -17,7 +17,7 @@
 namespace dyngen::gen {
 
 struct ReportOptions {
-  std::vector<Algorithm> algorithms{"rnea", "crba", "aba"};
+  std::vector<Algorithm> algorithms = default_algorithm_names();
   int states = 1000;           // random states for the errors
   std::uint64_t seed = 1;
   int timed_states = 64;       // the benchmarks cycle through the first ones

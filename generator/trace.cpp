@@ -25,6 +25,13 @@ std::vector<Algorithm> algorithm_names() {
   return names;
 }
 
+std::vector<Algorithm> default_algorithm_names() {
+  std::vector<Algorithm> names;
+  for (const AlgorithmSpec<double>& a : algorithm_table<double>())
+    if (a.in_default_set) names.emplace_back(a.name);
+  return names;
+}
+
 const AlgorithmSpec<double>& algorithm_spec(const Algorithm& name) {
   const AlgorithmSpec<double>* spec = find_algorithm<double>(name);
   if (!spec) throw std::invalid_argument("no algorithm named '" + name + "'");

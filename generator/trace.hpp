@@ -21,6 +21,10 @@ std::string extent_text(const Extent& e, const std::string& nq, const std::strin
 /// The names in the runtime's table, in its order.
 std::vector<Algorithm> algorithm_names();
 
+/// The names of the table's default set (in_default_set), in its order: what is generated
+/// when --algorithms is not given.
+std::vector<Algorithm> default_algorithm_names();
+
 /// The table's entry for name (the same for every scalar but its call); throws
 /// std::invalid_argument for a name not in it.
 const AlgorithmSpec<double>& algorithm_spec(const Algorithm& name);

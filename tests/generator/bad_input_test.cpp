@@ -493,6 +493,23 @@ TEST(Romeo, RneaAndCrbaAloneGenerateWithEveryJoint) {
   EXPECT_EQ(generate(robot, options).counts.size(), 2u);
 }
 
+// asked for only algorithms that divide by ABA's pivots, the error suggests the default set's
+// well-defined ones
+TEST(Romeo, OnlyPivotingAlgorithmsSuggestTheDefaultsWithoutThem) {
+  const Robot robot = load_robot(models + "/romeo.urdf", independent_mimics());
+  GenerateOptions options;
+  options.name = "romeo";
+  options.algorithms = {"aba", "minv"};
+  try {
+    generate(robot, options);
+    ADD_FAILURE() << "generated";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("or leave aba, minv out (--algorithms rnea,crba);"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 using RomeoCommand = Scratch;
 
 TEST_F(RomeoCommand, SucceedsWithLockMasslessOrWithoutAba) {

@@ -327,6 +327,26 @@ TEST_F(Report, ShowsHostileNamesAsWrittenAndRunsNothing) {
   EXPECT_EQ(svg.find(original), std::string::npos) << "newlines are escaped";
 }
 
+// report.md heads each algorithm's table with its title from the runtime's table, in the order
+// measured; one without a title by its name and outputs
+TEST_F(Report, HeadsEachAlgorithmWithItsTitle) {
+  using namespace dyngen::gen;
+  const Robot robot = load_robot(models + "/double_pendulum.urdf");
+  ReportOptions options;
+  options.algorithms = {"rnea", "crba", "aba", "rnea_derivatives"};
+  options.quiet = true;
+  const std::filesystem::path out = dir / "report";
+  std::filesystem::create_directories(out);
+  write_report(robot, options, {}, made_up_measurements(options.algorithms), out.string());
+  std::string headings;
+  std::istringstream in(read(out / "report.md"));
+  for (std::string line; std::getline(in, line);)
+    if (line.starts_with("## ")) headings += line + "\n";
+  EXPECT_EQ(headings,
+            "## RNEA (inverse dynamics, tau)\n## CRBA (mass matrix, M)\n"
+            "## ABA (forward dynamics, qdd)\n## rnea_derivatives (dtau_dq, dtau_dv)\n");
+}
+
 TEST_F(Report, FirmwareReportShowsHostileNamesAsWritten) {
   if (std::system("command -v qemu-system-arm arm-none-eabi-g++ >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "no qemu-system-arm or arm-none-eabi-g++ (the test firmware_tools_present fails)";

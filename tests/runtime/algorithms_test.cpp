@@ -580,5 +580,36 @@ TEST(AlgorithmTable, NamesAndArraysAreConsistent) {
   }
 }
 
+// the CRBA+LDLT variant of dyngen report and bench/'s peers call the entry of each of the three
+// Computes with a fixed signature; the default set is the three of them
+TEST(AlgorithmTable, EachComputesHasOneEntryWithItsSignature) {
+  const auto names = [](const std::vector<ArraySpec>& arrays) {
+    std::vector<std::string_view> out;
+    for (const ArraySpec& x : arrays) out.push_back(x.name);
+    return out;
+  };
+  using Names = std::vector<std::string_view>;
+  const std::map<Computes, std::pair<Names, Names>> signature{
+      {Computes::InverseDynamics, {{"q", "v", "a"}, {"tau"}}},
+      {Computes::MassMatrix, {{"q"}, {"M"}}},
+      {Computes::ForwardDynamics, {{"q", "v", "tau"}, {"qdd"}}}};
+  std::map<Computes, int> count;
+  Names in_default_set;
+  for (const AlgorithmSpec<double>& a : algorithm_table<double>()) {
+    if (a.in_default_set) in_default_set.push_back(a.name);
+    if (a.computes == Computes::Other) continue;
+    ++count[a.computes];
+    EXPECT_EQ(find_algorithm<double>(a.computes), &a) << a.name;
+    EXPECT_EQ(names(a.inputs), signature.at(a.computes).first) << a.name;
+    EXPECT_EQ(names(a.outputs), signature.at(a.computes).second) << a.name;
+    EXPECT_FALSE(a.title.empty()) << a.name;
+  }
+  EXPECT_EQ(count, (std::map<Computes, int>{{Computes::InverseDynamics, 1},
+                                            {Computes::MassMatrix, 1},
+                                            {Computes::ForwardDynamics, 1}}));
+  EXPECT_EQ(in_default_set, (Names{"rnea", "crba", "aba"}));
+  EXPECT_EQ(find_algorithm<double>(Computes::Other), nullptr);
+}
+
 }  // namespace
 }  // namespace dyngen

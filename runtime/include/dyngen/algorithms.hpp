@@ -118,6 +118,15 @@ using AlgorithmOutputs = std::span<const std::span<S>>;
 /// of freedom between each frame and the base, in an output of 6 nv entries per frame.
 enum class Growth { Linear, ColumnSteps, Dense, FrameColumns };
 
+/// Which of the three quantities that every rigid-body dynamics library computes an algorithm
+/// gives, so that dyngen can compare ways of computing them without naming algorithms: bench/
+/// times each against the peers (MuJoCo, KDL) that compute it too, and dyngen report measures
+/// forward dynamics also as qdd = M^-1 (tau - h) by LDL^T, with M from the MassMatrix entry and
+/// h from the InverseDynamics entry at a = 0 (CRBA+LDLT). Each fixes the signature, which the
+/// table's test checks: InverseDynamics (q, v, a) -> tau, MassMatrix (q) -> M and
+/// ForwardDynamics (q, v, tau) -> qdd.
+enum class Computes { Other, InverseDynamics, MassMatrix, ForwardDynamics };
+
 /// One algorithm: call(model, ws, inputs, outputs) with the arrays in the order listed, each of
 /// its extent's length. Every algorithm reads q first.
 template <class S>
@@ -128,6 +137,10 @@ struct AlgorithmSpec {
   Growth growth;
   bool divides_by_pivots;    // ABA's precondition: every joint moves some inertia
   void (*call)(const Model<S>&, Workspace<S>&, AlgorithmInputs<S>, AlgorithmOutputs<S>);
+  // the report's heading; empty: the name and the outputs, "minv (Minv)"
+  std::string_view title = {};
+  Computes computes = Computes::Other;
+  bool in_default_set = false;  // generated when --algorithms is not given
 };
 
 template <class S>
@@ -140,17 +153,20 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        Growth::Linear, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          rnea<S>(m, ws, in[0], in[1], in[2], out[0]);
-       }},
+       },
+       "RNEA (inverse dynamics, tau)", Computes::InverseDynamics, true},
       {"crba", "Mass matrix M(q) (composite rigid bodies).", {q_array}, {M_array},
        Growth::ColumnSteps, false,
-       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) { crba<S>(m, ws, in[0], out[0]); }},
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) { crba<S>(m, ws, in[0], out[0]); },
+       "CRBA (mass matrix, M)", Computes::MassMatrix, true},
       {"aba",
        "Forward dynamics (articulated bodies): qdd = M(q)^-1 (tau - C(q, v) v - g(q)).",
        {q_array, v_array, tau_array}, {qdd_array},
        Growth::Linear, true,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          aba<S>(m, ws, in[0], in[1], in[2], out[0]);
-       }},
+       },
+       "ABA (forward dynamics, qdd)", Computes::ForwardDynamics, true},
       {"gravity",
        "Generalised gravity g(q) = rnea(q, 0, 0), from each subtree's mass and first moment.",
        {q_array}, {g_array},
@@ -235,6 +251,14 @@ template <class S>
 const AlgorithmSpec<S>* find_algorithm(std::string_view name) {
   for (const AlgorithmSpec<S>& a : algorithm_table<S>())
     if (a.name == name) return &a;
+  return nullptr;
+}
+
+/// The entry that computes c, or nullptr (for Other too).
+template <class S>
+const AlgorithmSpec<S>* find_algorithm(Computes c) {
+  for (const AlgorithmSpec<S>& a : algorithm_table<S>())
+    if (a.computes == c && c != Computes::Other) return &a;
   return nullptr;
 }
 
