@@ -50,11 +50,9 @@ std::string literal(float value);
 /// operations, so the bits are the same.
 enum class Structure { Unrolled, Shared, Auto, Lanes };
 
-/// Below this many operations a function's straight-line code (about 12 bytes of x86-64 per
-/// operation) fits the instruction cache and sharing only adds calls and gathers: in the
-/// benchmarks no function under 1,800 operations ran faster shared beyond the noise, and
-/// planar chains and solo12's floating CRBA ran 14 to 32% slower; from 1,844 on, sharing
-/// gained up to 1.9 times (docs/performance.md, "Code structure").
+/// Below this many operations a function's straight-line code fits the instruction cache and
+/// sharing only adds calls and gathers; above it, sharing ran faster in the benchmarks
+/// (docs/performance.md, "Code structure").
 inline constexpr long min_shared_function_operations = 1800;
 
 /// Sections smaller than this stay in place under Structure::Shared: gathering a section's
@@ -63,11 +61,9 @@ inline constexpr long min_shared_function_operations = 1800;
 inline constexpr std::size_t min_shared_operations = 40;
 
 /// From this many operations (the banner's count, kernels' loops included) Structure::Auto
-/// shares rather than computes in lanes. Below it
-/// lanes ran faster than shared functions in every function measured, up to solo12 floating's
-/// aba_derivatives (35,980 operations, 1.24 times); atlas floating's derivatives (48,767 and
-/// 178,388, with kernel calls) took 1.6 times as long to compile in lanes, past the minute
-/// that issue 13 allows (docs/performance.md, "Code structure").
+/// shares rather than computes in lanes: below it lanes ran faster than shared functions in
+/// every function measured, and above it they took too long to compile (docs/performance.md,
+/// "Code structure").
 inline constexpr long max_lane_function_operations = 40000;
 
 /// Sections shorter than this, and blocks of fewer operations in lanes, stay scalar under

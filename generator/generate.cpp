@@ -545,7 +545,8 @@ Program<T> traced_program(const PackageContext& p, const Algorithm& a) {
   // the kernels run in vector lanes in C++ on the host (C has none; a Cortex-M no lanes)
   const bool vector_kernels = !p.dialect.c() && p.options.target == Target::Host;
   Program<T> program = trace<T>(a, p.model, true, default_call_kernels_from, vector_kernels);
-  // the kernels are C++ templates; unrolled into C, atlas's derivatives take GCC 400 s and 5 GB
+  // the kernels are C++ templates; unrolled into C, big robots' derivatives take GCC too long
+  // (docs/performance.md, "The generator's limits")
   if (p.dialect.c() && !program.graph.calls.empty())
     throw InputError(fmt::format(
         "{}: {} of this robot calls kernels (dyngen_kernels.hpp, for its {} degrees of freedom), "

@@ -46,7 +46,7 @@ struct GenerateOptions {
 
 /// CRBA carries each column of M up to the base, so its work and code grow with the sum over
 /// joints of nv times depth (nv^2 / 2 for a chain): generation refuses CRBA above this many
-/// such steps, a chain of 500 links, which takes about 20 s, 1 GB and writes 75 MB of code.
+/// such steps, a chain of 500 links (its cost: docs/performance.md, "The generator's limits").
 inline constexpr long long max_crba_column_steps = 125000;
 
 /// frame_jacobians computes a Jacobian column per degree of freedom between each frame and the
@@ -55,7 +55,7 @@ inline constexpr long long max_crba_column_steps = 125000;
 inline constexpr long long max_frame_columns = 125000;
 
 /// ... and above this many entries of its output (frames times 6 nv: 1000 frames of a 1000-joint
-/// star, 48 MB a call in double), which the trace, the check and every caller hold.
+/// star), which the trace, the check and every caller hold (README, "Limits").
 inline constexpr long long max_frame_entries = 6000000;
 
 /// minv and aba_derivatives fill every entry of an nv x nv matrix with work that grows with the

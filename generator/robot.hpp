@@ -66,8 +66,8 @@ inline constexpr const char* default_frames_rule =
     "flanges, feet, fingertips)";
 
 /// The largest robot dyngen takes (README, "Limits"): joints in the file (and links, one more),
-/// and degrees of freedom (entries of v). Generating RNEA or ABA for a chain of 10,000 links takes
-/// 10 to 30 s and up to 1.4 GB; eval's mass matrix alone is then 800 MB.
+/// and degrees of freedom (entries of v); what the largest cost to generate and evaluate is in
+/// the README's table.
 inline constexpr int max_joints = 10000, max_nv = 10000;
 
 /// Reads a robot file in one of the formats of readers.hpp and builds its model.

@@ -52,11 +52,8 @@ struct KernelRecord {
 
 /// Where the kernels run in vector lanes (Graph::vector_kernels), calls that inlining would
 /// unroll into this many operations or more, but keep more than half of the loops' work (a
-/// floating robot's M^-1 d tau: 5,724 and 7,668 of 8,100 operations on solo12), are faster as
-/// calls; below it (ur5's 420 of 468) the unrolled code is. Measured with Google Benchmark,
-/// aba_derivatives generated both ways: solo12 floating 24% faster called, ur5 floating 11%,
-/// iiwa14 floating 5%; ur5 and iiwa14 fixed 16% and 6% slower called, and atlas fixed, whose
-/// M^-1 keeps its branches' zeros (7,200 of 17,100), 17% slower called.
+/// floating robot's M^-1 d tau), are faster as calls; below it the unrolled code is
+/// (docs/performance.md, "The generator's limits").
 inline constexpr long vector_kernels_from = 2000;
 
 /// An input array element, e.g. q[3].

@@ -83,8 +83,8 @@ struct Workspace {
   }
 
   /// Above this many degrees of freedom the workspace has no matrix buffers (they grow with
-  /// nbodies * nv), and minv and aba_derivatives, which need them, cannot run: a workspace of
-  /// a 1,000-link chain holds about 140 MB of them.
+  /// nbodies * nv), and minv and aba_derivatives, which need them, cannot run (their size:
+  /// docs/performance.md, "The generator's limits").
   static constexpr int max_matrix_nv = 1000;
   bool has_matrix_buffers = false;
 
