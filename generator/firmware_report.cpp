@@ -135,72 +135,44 @@ std::vector<long> instructions_per_call(const std::string& qemu, const fs::path&
   return counts;
 }
 
-}  // namespace
+/// Where firmware-report works, and what the package was generated as.
+struct FirmwareBuild {
+  const Robot& robot;
+  const FirmwareReportOptions& options;
+  const Generated& generated;
+  fs::path package_dir, build;
+  std::string target;  // its name: "cortex-m4f"
+  bool c, single;
+  std::string ns, source;
+};
 
-std::vector<std::string> make_firmware_report(const Robot& robot,
-                                              const FirmwareReportOptions& options,
-                                              const std::string& dir) {
-  const GenerateOptions& generate_options = options.generate;
-  const char* machine = qemu_machine(generate_options.target);
-  const std::string target = target_names[static_cast<int>(generate_options.target)];
-  if (!machine)
-    throw InputError(fmt::format("--target {}: dyngen firmware-report runs {}", target,
-                                 fmt::join(firmware_report_targets, ", ")));
-  const fs::path out_dir(dir), package_dir = out_dir / "package", build = out_dir / "build";
-  if (const std::vector<std::string> foreign = foreign_entries(
-          out_dir, {std::begin(firmware_report_files), std::end(firmware_report_files)},
-          {"package", "build"});
-      !options.force && !foreign.empty())
-    throw FileError(fmt::format(
-        "{}: exists and holds files that dyngen firmware-report did not write ({}); it writes "
-        "only into a new or empty directory or over an earlier report. Choose another directory, "
-        "or give --force to write into it (its report files, package/ and build/ are replaced, "
-        "the rest kept).",
-        dir, listed(foreign)));
-  const auto step = [&](int k, const std::string& text) {
-    if (!options.quiet) fmt::print("[{}/5] {}\n", k, text), std::fflush(stdout);
-  };
-  const std::string qemu =
-      fmt::format("timeout 1800 qemu-system-arm -machine {} -nographic -monitor none -serial none "
-                  "-semihosting-config enable=on,target=native",
-                  machine);
-  output_of("qemu-system-arm --version", "running the firmware needs qemu-system-arm");
-
-  step(1, fmt::format("generating the package into {}, measuring it for {}",
-                      package_dir.string(), target));
-  GenerateOptions package_options = generate_options;
-  package_options.measure = true;
-  const Generated generated = generate(robot, package_options);
-  write_package(package_dir.string(), generated.files, options.force);
-  const bool c = generate_options.language == Language::C;
-  const bool single = generate_options.single_precision;
-  const std::string& ns = generate_options.name;
-  const Dialect dialect{generate_options.language, ns};
-  const std::string source = ns + (c ? "_dynamics.c" : "_dynamics.cpp");
-
-  step(2, fmt::format("writing and cross-compiling the harness in {}", build.string()));
-  fs::remove_all(build);
-  fs::create_directories(build);
+/// The harness (templates/firmware_harness.cpp.in), the startup code and the linker script of
+/// the target, in b.build.
+void write_harness(const FirmwareBuild& b) {
+  const GenerateOptions& generate_options = b.options.generate;
+  const Dialect dialect{generate_options.language, b.ns};
+  const std::string& ns = b.ns;
+  const bool c = b.c;
   std::string quaternions;
-  for (int i = 0; i < robot.model.nbodies; ++i)
-    if (robot.model.joint_type[i] == JointType::Free)
+  for (int i = 0; i < b.robot.model.nbodies; ++i)
+    if (b.robot.model.joint_type[i] == JointType::Free)
       quaternions += fmt::format(
           "  for (int k = 0; k < 4; ++k) q[{} + k] = next(0) < 0 ? -Scalar(0.5) : Scalar(0.5);\n",
-          robot.model.q_index[i] + 3);
+          b.robot.model.q_index[i] + 3);
   std::string stack_prints;
   for (std::size_t k = 0; k < generate_options.algorithms.size(); ++k)
     stack_prints += fmt::format("  print_stack(\"{}\", stack_use[{}]);\n",
                                 generate_options.algorithms[k], k);
-  write_file(build / "harness.cpp",
+  write_file(b.build / "harness.cpp",
              fill("firmware_harness.cpp.in",
                   {{"name", ns},
                    {"header", ns + (c ? "_dynamics.h" : "_dynamics.hpp")},
-                   {"scalar", single ? "float" : "double"},
-                   {"states", std::to_string(options.states)},
+                   {"scalar", b.single ? "float" : "double"},
+                   {"states", std::to_string(b.options.states)},
                    {"nq", c ? dialect.size("nq") : "::" + ns + "::nq"},
                    {"nv", c ? dialect.size("nv") : "::" + ns + "::nv"},
                    {"frames_constant",
-                    generated.nframes == 0
+                    b.generated.nframes == 0
                         ? ""
                         : fmt::format("constexpr int nframes = {};",
                                       c ? dialect.size("nframes") : "::" + ns + "::nframes")},
@@ -208,7 +180,7 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
                    {"functions", std::to_string(generate_options.algorithms.size())},
                    {"calls", harness_calls(generate_options.algorithms, dialect)},
                    {"stack_prints", stack_prints}}));
-  write_file(build / "startup.c", std::string(template_text("startup.c")));
+  write_file(b.build / "startup.c", std::string(template_text("startup.c")));
   std::string linker_script(template_text("cortex_m.ld"));
   if (generate_options.target == Target::CortexM33) {
     // mps2-an505 starts a Cortex-M33 in the secure state at 0x10000000, SRAM secure at 0x38000000
@@ -220,28 +192,34 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
       linker_script.replace(at, std::string_view(from).size(), to);
     }
   }
-  write_file(build / "cortex_m.ld", linker_script);
+  write_file(b.build / "cortex_m.ld", linker_script);
+}
 
-  const Toolchain cross = toolchain(target), host = toolchain("host");
+/// The images for the target (firmware.elf over every state, count.elf over one) and the
+/// harness for the host, from the files write_harness wrote.
+void compile_images(const FirmwareBuild& b) {
+  const bool c = b.c;
+  const fs::path& build = b.build;
+  const Toolchain cross = toolchain(b.target), host = toolchain("host");
   std::vector<std::string> warnings{"-Wall", "-Wextra", "-Werror"};
-  if (single) warnings.push_back("-Wdouble-promotion");
+  if (b.single) warnings.push_back("-Wdouble-promotion");
   const auto path = [](const fs::path& p) { return shell_quoted(p.string()); };
   const std::string package_flags = words(compile_flags(cross, c)) + " " + words(warnings);
   const std::string cxx_flags = words(compile_flags(cross, false)) + " " + words(warnings);
-  const std::string include = "-I" + path(package_dir);
+  const std::string include = "-I" + path(b.package_dir);
   auto compile = [&](const std::string& what, const std::string& command) {
     output_of(command, what);
   };
   compile("cross-compiling the package",
           fmt::format("{} {} {} -c {} -o {}", words(c ? cross.c : cross.cxx), package_flags,
-                      c ? "-std=c99" : "-std=c++17", path(package_dir / source),
+                      c ? "-std=c99" : "-std=c++17", path(b.package_dir / b.source),
                       path(build / "dynamics.o")));
   compile("cross-compiling startup.c",
           fmt::format("{} {} -std=c99 -c {} -o {}", words(cross.c),
                       words(compile_flags(cross, true)), path(build / "startup.c"),
                       path(build / "startup.o")));
   for (const auto& [image, states] :
-       {std::pair{"firmware", options.states}, std::pair{"count", 1}}) {
+       {std::pair{"firmware", b.options.states}, std::pair{"count", 1}}) {
     compile("cross-compiling the harness",
             fmt::format("{} {} -std=c++17 -DSTATES={} {} -c {} -o {}", words(cross.cxx),
                         cxx_flags, states, include, path(build / "harness.cpp"),
@@ -255,42 +233,60 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
   compile("compiling the package for the host",
           fmt::format("{} {} {} -c {} -o {}", words(c ? host.c : host.cxx),
                       words(compile_flags(host, c)), c ? "-std=c99" : "-std=c++17",
-                      path(package_dir / source), path(build / "host_dynamics.o")));
+                      path(b.package_dir / b.source), path(build / "host_dynamics.o")));
   compile("compiling the harness for the host",
           fmt::format("{} {} -std=c++17 {} {} {} -o {}", words(host.cxx),
                       words(compile_flags(host, false)), include, path(build / "harness.cpp"),
                       path(build / "host_dynamics.o"), path(build / "host")));
 
-  step(3, fmt::format("running {} states on qemu's {} and on the host", options.states, machine));
+}
+
+/// What running the images showed.
+struct FirmwareRun {
+  bool equal = false;                         // the target's outputs are the host's, bit for bit
+  std::vector<std::string> linked_forbidden;  // C library or libm symbols in the image
+  bool soft_double = false;                   // software double in the image
+  std::map<std::string, long> stack_used;     // by function: bytes, painted stack
+};
+
+/// Runs firmware.elf under qemu and the harness on the host, and reads the image's symbols.
+FirmwareRun run_images(const FirmwareBuild& b, const std::string& qemu) {
+  const auto path = [](const fs::path& p) { return shell_quoted(p.string()); };
+  FirmwareRun run;
   const std::string symbols =
-      output_of(fmt::format("{} {}", words(cross.nm), path(build / "firmware.elf")),
+      output_of(fmt::format("{} {}", words(toolchain(b.target).nm), path(b.build / "firmware.elf")),
                 "reading the image's symbols");
-  std::vector<std::string> linked_forbidden;
   for (const char* name : forbidden_symbols)
     if (symbols.find(fmt::format(" {}\n", name)) != std::string::npos)
-      linked_forbidden.push_back(name);
-  const bool soft_double = symbols.find(" __aeabi_d") != std::string::npos;
+      run.linked_forbidden.push_back(name);
+  run.soft_double = symbols.find(" __aeabi_d") != std::string::npos;
   const auto [target_lines, stack_lines] =
-      split_lines(output_of(fmt::format("{} -kernel {}", qemu, path(build / "firmware.elf")),
+      split_lines(output_of(fmt::format("{} -kernel {}", qemu, path(b.build / "firmware.elf")),
                             "running the harness under qemu"),
                   "stack ");
   const std::string host_lines =
-      output_of(path(build / "host"), "running the harness on the host");
-  const bool equal = target_lines == host_lines && !host_lines.empty();
-  std::map<std::string, long> stack_used;
+      output_of(path(b.build / "host"), "running the harness on the host");
+  run.equal = target_lines == host_lines && !host_lines.empty();
   for (const std::string& line : stack_lines) {
     const std::size_t space = line.find(' ');
-    stack_used[line.substr(0, space)] = std::stol(line.substr(space + 1));
+    run.stack_used[line.substr(0, space)] = std::stol(line.substr(space + 1));
   }
+  return run;
+}
 
-  step(4, "counting the instructions of each call (qemu's execution log)");
-  const std::vector<long> instructions = instructions_per_call(qemu, build / "count.elf");
-  if (instructions.size() != generate_options.algorithms.size())
-    throw std::runtime_error(fmt::format("internal error: {} calls counted, {} made",
-                                         instructions.size(),
-                                         generate_options.algorithms.size()));
-
-  step(5, "writing the report");
+/// firmware-report.md and .json in out_dir; returns what failed, and prints the Markdown
+/// unless quiet.
+std::vector<std::string> write_firmware_report(const FirmwareBuild& b, FirmwareRun run,
+                                               const std::vector<long>& instructions,
+                                               const char* machine, const fs::path& out_dir) {
+  const FirmwareReportOptions& options = b.options;
+  const GenerateOptions& generate_options = options.generate;
+  const Generated& generated = b.generated;
+  const Robot& robot = b.robot;
+  const bool c = b.c, single = b.single, equal = run.equal, soft_double = run.soft_double;
+  const std::string& target = b.target;
+  const std::vector<std::string>& linked_forbidden = run.linked_forbidden;
+  std::map<std::string, long>& stack_used = run.stack_used;
   std::vector<std::string> failed;
   if (!equal) failed.push_back("the Cortex-M's outputs differ from the host's");
   if (!linked_forbidden.empty())
@@ -360,6 +356,76 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
   write_file(out_dir / "firmware-report.json", json + "\n");
   if (!options.quiet) fmt::print("{}", markdown);
   return failed;
+}
+
+}  // namespace
+
+std::vector<std::string> make_firmware_report(const Robot& robot,
+                                              const FirmwareReportOptions& options,
+                                              const std::string& dir) {
+  const GenerateOptions& generate_options = options.generate;
+  const char* machine = qemu_machine(generate_options.target);
+  const std::string target = target_names[static_cast<int>(generate_options.target)];
+  if (!machine)
+    throw InputError(fmt::format("--target {}: dyngen firmware-report runs {}", target,
+                                 fmt::join(firmware_report_targets, ", ")));
+  const fs::path out_dir(dir), package_dir = out_dir / "package", build = out_dir / "build";
+  if (const std::vector<std::string> foreign = foreign_entries(
+          out_dir, {std::begin(firmware_report_files), std::end(firmware_report_files)},
+          {"package", "build"});
+      !options.force && !foreign.empty())
+    throw FileError(fmt::format(
+        "{}: exists and holds files that dyngen firmware-report did not write ({}); it writes "
+        "only into a new or empty directory or over an earlier report. Choose another directory, "
+        "or give --force to write into it (its report files, package/ and build/ are replaced, "
+        "the rest kept).",
+        dir, listed(foreign)));
+  const auto step = [&](int k, const std::string& text) {
+    if (!options.quiet) fmt::print("[{}/5] {}\n", k, text), std::fflush(stdout);
+  };
+  const std::string qemu =
+      fmt::format("timeout 1800 qemu-system-arm -machine {} -nographic -monitor none -serial none "
+                  "-semihosting-config enable=on,target=native",
+                  machine);
+  output_of("qemu-system-arm --version", "running the firmware needs qemu-system-arm");
+
+  step(1, fmt::format("generating the package into {}, measuring it for {}",
+                      package_dir.string(), target));
+  GenerateOptions package_options = generate_options;
+  package_options.measure = true;
+  const Generated generated = generate(robot, package_options);
+  write_package(package_dir.string(), generated.files, options.force);
+  const bool c = generate_options.language == Language::C;
+  const std::string& ns = generate_options.name;
+  const FirmwareBuild b{robot,
+                        options,
+                        generated,
+                        package_dir,
+                        build,
+                        target,
+                        c,
+                        generate_options.single_precision,
+                        ns,
+                        ns + (c ? "_dynamics.c" : "_dynamics.cpp")};
+
+  step(2, fmt::format("writing and cross-compiling the harness in {}", build.string()));
+  fs::remove_all(build);
+  fs::create_directories(build);
+  write_harness(b);
+  compile_images(b);
+
+  step(3, fmt::format("running {} states on qemu's {} and on the host", options.states, machine));
+  FirmwareRun run = run_images(b, qemu);
+
+  step(4, "counting the instructions of each call (qemu's execution log)");
+  const std::vector<long> instructions = instructions_per_call(qemu, build / "count.elf");
+  if (instructions.size() != generate_options.algorithms.size())
+    throw std::runtime_error(fmt::format("internal error: {} calls counted, {} made",
+                                         instructions.size(),
+                                         generate_options.algorithms.size()));
+
+  step(5, "writing the report");
+  return write_firmware_report(b, std::move(run), instructions, machine, out_dir);
 }
 
 }  // namespace dyngen::gen
