@@ -1182,6 +1182,26 @@ std::string sincos_calls(const std::vector<bool>& marked, bool single_precision,
 
 }  // namespace
 
+std::map<std::string, std::string> Dialect::cmake_language() const {
+  if (c())
+    return {{"standard", "C99"},
+            {"standard_name", "C"},
+            {"language", "C"},
+            {"check_flag", "check_c_compiler_flag"},
+            {"extension", "c"},
+            {"feature", "c_std_99"},
+            {"language_flags", ""},
+            {"enable_check_language", "  enable_language(CXX)  # the check is C++ (GoogleTest)\n"}};
+  return {{"standard", "C++17"},
+          {"standard_name", "C++"},
+          {"language", "CXX"},
+          {"check_flag", "check_cxx_compiler_flag"},
+          {"extension", "cpp"},
+          {"feature", "cxx_std_17"},
+          {"language_flags", " -fno-exceptions -fno-rtti"},
+          {"enable_check_language", ""}};
+}
+
 std::string Dialect::size(const std::string& local) const {
   if (!c()) return local;
   std::string macro = name + "_" + local;

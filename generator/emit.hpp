@@ -89,6 +89,23 @@ struct Dialect {
   std::string external(const std::string& local) const { return c() ? name + "_" + local : local; }
   /// "nq" in C++ (a constant of the namespace), "UR5_NQ" in C (a macro).
   std::string size(const std::string& local) const;
+  /// A name the header declares, from the global scope: "::ur5::rnea", "::ur5_rnea".
+  std::string qualified(const std::string& local) const {
+    return "::" + (c() ? external(local) : name + "::" + local);
+  }
+  /// A size constant from the global scope: "::ur5::nq", "UR5_NQ".
+  std::string size_outside(const std::string& local) const {
+    return c() ? size(local) : "::" + name + "::" + local;
+  }
+  /// What the header's names start with, seen from outside: "ur5::", "ur5_".
+  std::string prefix() const { return c() ? name + "_" : name + "::"; }
+  /// The package's header and source: "ur5_dynamics.hpp", "ur5_dynamics.c".
+  std::string header() const { return name + (c() ? "_dynamics.h" : "_dynamics.hpp"); }
+  std::string source() const { return name + (c() ? "_dynamics.c" : "_dynamics.cpp"); }
+  /// How f passes its trig to f_trig.
+  const char* trig_argument() const { return c() ? "&trig" : "trig"; }
+  /// The values of templates/CMakeLists.txt.in that name the package's language.
+  std::map<std::string, std::string> cmake_language() const;
   std::string discard(const std::string& x) const {
     return c() ? "(void)" + x : "static_cast<void>(" + x + ")";
   }

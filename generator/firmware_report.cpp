@@ -69,8 +69,7 @@ std::string harness_calls(const std::vector<Algorithm>& algorithms, const Dialec
       prints += fmt::format("      print(\"{}\", s, {}, {});\n", spec.name, a.name,
                             extent_expression(a.extent));
     const std::string& name = algorithms[k];
-    const std::string call =
-        "::" + (dialect.c() ? dialect.external(name) : dialect.name + "::" + name);
+    const std::string call = dialect.qualified(name);
     text += fmt::format(
         "    {{  // {0}\n"
         "      static Scalar {1};\n"
@@ -152,7 +151,6 @@ void write_harness(const FirmwareBuild& b) {
   const GenerateOptions& generate_options = b.options.generate;
   const Dialect dialect{generate_options.language, b.ns};
   const std::string& ns = b.ns;
-  const bool c = b.c;
   std::string quaternions;
   for (int i = 0; i < b.robot.model.nbodies; ++i)
     if (b.robot.model.joint_type[i] == JointType::Free)
@@ -166,16 +164,16 @@ void write_harness(const FirmwareBuild& b) {
   write_file(b.build / "harness.cpp",
              fill("firmware_harness.cpp.in",
                   {{"name", ns},
-                   {"header", ns + (c ? "_dynamics.h" : "_dynamics.hpp")},
+                   {"header", dialect.header()},
                    {"scalar", b.single ? "float" : "double"},
                    {"states", std::to_string(b.options.states)},
-                   {"nq", c ? dialect.size("nq") : "::" + ns + "::nq"},
-                   {"nv", c ? dialect.size("nv") : "::" + ns + "::nv"},
+                   {"nq", dialect.size_outside("nq")},
+                   {"nv", dialect.size_outside("nv")},
                    {"frames_constant",
                     b.generated.nframes == 0
                         ? ""
                         : fmt::format("constexpr int nframes = {};",
-                                      c ? dialect.size("nframes") : "::" + ns + "::nframes")},
+                                      dialect.size_outside("nframes"))},
                    {"quaternions", quaternions},
                    {"functions", std::to_string(generate_options.algorithms.size())},
                    {"calls", harness_calls(generate_options.algorithms, dialect)},
@@ -406,7 +404,7 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
                         c,
                         generate_options.single_precision,
                         ns,
-                        ns + (c ? "_dynamics.c" : "_dynamics.cpp")};
+                        Dialect{generate_options.language, ns}.source()};
 
   step(2, fmt::format("writing and cross-compiling the harness in {}", build.string()));
   fs::remove_all(build);

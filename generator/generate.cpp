@@ -517,8 +517,8 @@ struct PackageContext {
         ns(o.name),
         scalar(in_float ? "float" : "double"),
         single(in_float),
-        header(ns + (dialect.c() ? "_dynamics.h" : "_dynamics.hpp")),
-        source(ns + (dialect.c() ? "_dynamics.c" : "_dynamics.cpp")) {}
+        header(dialect.header()),
+        source(dialect.source()) {}
 
   const Robot& robot;
   const Model<double>& model;
@@ -571,7 +571,7 @@ std::pair<std::string, std::string> call_arguments(const AlgorithmSpec<double>& 
   std::string trig_arguments, arguments;
   for (const ArraySpec& x : spec.inputs) {
     trig_arguments += fmt::format("{}{}", trig_arguments.empty() ? "" : ", ", x.name);
-    if (x.name == "q") trig_arguments += dialect.c() ? ", &trig" : ", trig";
+    if (x.name == "q") trig_arguments += fmt::format(", {}", dialect.trig_argument());
   }
   for (const ArraySpec& y : spec.outputs) trig_arguments += fmt::format(", {}", y.name);
   for (std::size_t k = 0; k < spec.inputs.size(); ++k)
@@ -612,7 +612,7 @@ void add_function(FunctionTexts& text, const PackageContext& p, const AlgorithmS
   text.cases += fill("function_check.cpp.in",
                      {{"name", a},
                       {"namespace", p.ns},
-                      {"call", "::" + (dialect.c() ? dialect.external(a) : p.ns + "::" + a)},
+                      {"call", dialect.qualified(a)},
                       {"arguments", arguments}});
 }
 
@@ -801,7 +801,6 @@ void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
              {"frame_records", frame_records(p.model)},
              {"frames_argument", p.model.frames.empty() ? "" : ", model_frames"},
              {"gravity", fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z))}})});
-  const std::string scope = "::" + p.ns + "::";
   files.push_back(
       {p.ns + "_check.cpp",
        fill("check.cpp.in",
@@ -811,10 +810,9 @@ void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
               p.batch_dialect.batch() ? fmt::format("#include \"{}_batch.hpp\"\n", p.ns) : ""},
              {"name", p.ns},
              {"namespace", p.ns},
-             {"nq", dialect.c() ? dialect.size("nq") : scope + "nq"},
-             {"nv", dialect.c() ? dialect.size("nv") : scope + "nv"},
-             {"joint_names",
-              "::" + (dialect.c() ? dialect.external("joint_names") : p.ns + "::joint_names")},
+             {"nq", dialect.size_outside("nq")},
+             {"nv", dialect.size_outside("nv")},
+             {"joint_names", dialect.qualified("joint_names")},
              {"scalar", p.scalar},
              {"random_states", "10000"},
              {"extreme_states", "2000"},
@@ -824,25 +822,16 @@ void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
 /// The package's CMakeLists.txt: the library in its language, the batches, the Python module
 /// and the check.
 GeneratedFile cmake_file(const PackageContext& p, const std::string& banner) {
-  const bool c = p.dialect.c();
-  return {"CMakeLists.txt",
-          fill("CMakeLists.txt.in",
-               {{"banner", commented(banner, "#")},
-                {"name", p.ns},
-                {"NAME", upper(p.ns)},
-                {"standard", c ? "C99" : "C++17"},
-                {"standard_name", c ? "C" : "C++"},
-                {"language", c ? "C" : "CXX"},
-                {"check_flag", c ? "check_c_compiler_flag" : "check_cxx_compiler_flag"},
-                {"extension", c ? "c" : "cpp"},
-                {"batch_source", p.batch_dialect.batch() ? fmt::format(" {}_batch.cpp", p.ns) : ""},
-                {"python_module", p.options.python ? fill("python_module.cmake.in",
-                                                          {{"name", p.ns}, {"NAME", upper(p.ns)}})
-                                                   : ""},
-                {"feature", c ? "c_std_99" : "cxx_std_17"},
-                {"language_flags", c ? "" : " -fno-exceptions -fno-rtti"},
-                {"enable_check_language",
-                 c ? "  enable_language(CXX)  # the check is C++ (GoogleTest)\n" : ""}})};
+  std::map<std::string, std::string> values = p.dialect.cmake_language();
+  values.insert(
+      {{"banner", commented(banner, "#")},
+       {"name", p.ns},
+       {"NAME", upper(p.ns)},
+       {"batch_source", p.batch_dialect.batch() ? fmt::format(" {}_batch.cpp", p.ns) : ""},
+       {"python_module", p.options.python ? fill("python_module.cmake.in",
+                                                 {{"name", p.ns}, {"NAME", upper(p.ns)}})
+                                          : ""}});
+  return {"CMakeLists.txt", fill("CMakeLists.txt.in", values)};
 }
 
 /// The package's files under a banner.
@@ -888,7 +877,6 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   const bool single = std::is_same_v<T, float>;
   const PackageContext p(robot, model, options, single);
   const Dialect& dialect = p.dialect;
-  const std::string& ns = p.ns;
 
   Generated result;
   result.nframes = static_cast<int>(model.frames.size());
@@ -934,7 +922,7 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     const Toolchain tools = toolchain(target_names[static_cast<int>(options.target)]);
     result.footprint =
         measure_footprint(package_files<T>(p, text, result.counts, banner), p.source,
-                          options.algorithms, dialect.c() ? ns + "_" : ns + "::", tools);
+                          options.algorithms, dialect.prefix(), tools);
     banner.append("\n").append(footprint_text(*result.footprint));  // GCC 12 -Wrestrict misfires on "\n" + s
   }
   result.files = package_files<T>(p, text, result.counts, banner);
