@@ -1,7 +1,6 @@
 #include "emit.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -12,9 +11,28 @@
 
 #include <fmt/format.h>
 
+#include "footprint.hpp"
 #include "names.hpp"
 
 namespace dyngen::gen {
+
+std::string wrapped_call(const std::string& function, const std::vector<std::string>& arguments,
+                         const std::string& indent) {
+  const std::string head = indent + function + "(";
+  std::string text = head;
+  std::size_t column = head.size();
+  for (std::size_t k = 0; k < arguments.size(); ++k) {
+    const std::string item = arguments[k] + (k + 1 < arguments.size() ? ", " : ");");
+    if (column + item.size() > 100 && column > head.size()) {
+      while (text.back() == ' ') text.pop_back();
+      text.append("\n").append(head.size(), ' ');  // GCC 12's -Wrestrict misfires on "\n" + string
+      column = head.size();
+    }
+    text += item;
+    column += item.size();
+  }
+  return text + "\n";
+}
 
 std::string to_string(const OpCounts& c) {
   return fmt::format("add {}, mul {}, div {}, neg {}, sin {}, cos {}", c.add, c.mul, c.div, c.neg,
@@ -47,26 +65,6 @@ void count(OpCounts& c, Op op, long times = 1) {
     case Op::Call:
     case Op::Result: break;
   }
-}
-
-/// "    f(a, b, ...);" (indent first) with the arguments wrapped before 100 columns under the
-/// first.
-std::string wrapped_call(const std::string& function, const std::vector<std::string>& arguments,
-                         const std::string& indent = "    ") {
-  const std::string head = indent + function + "(";
-  std::string text = head;
-  std::size_t column = head.size();
-  for (std::size_t k = 0; k < arguments.size(); ++k) {
-    const std::string item = arguments[k] + (k + 1 < arguments.size() ? ", " : ");");
-    if (column + item.size() > 100 && column > head.size()) {
-      while (text.back() == ' ') text.pop_back();
-      text.append("\n").append(head.size(), ' ');  // GCC 12's -Wrestrict misfires on "\n" + string
-      column = head.size();
-    }
-    text += item;
-    column += item.size();
-  }
-  return text + "\n";
 }
 
 OpCounts count_ops_of(const KernelRecord& call) {
@@ -538,9 +536,8 @@ std::string output_stores(const Program<T>& program, const Model<double>& model,
     };
     // entries [begin, end) set to 0 (batch arrays hold `lanes` numbers per entry)
     auto zero_loop = [&](std::size_t begin, std::size_t end, const std::string& comment) {
-      const char* lanes = dialect.batch() ? " * lanes" : "";
-      return fmt::format("    for (int k = {}{}; k < {}{}; ++k) {}[k] = {};{}\n", begin,
-                         begin > 0 ? lanes : "", end, lanes, name, literal(T(0)), comment);
+      return fmt::format("    for (int k = {}; k < {}; ++k) {}[k] = {};{}\n", dialect.entry(begin),
+                         dialect.entry(end), name, literal(T(0)), comment);
     };
     std::size_t zeros = 0;
     for (std::size_t k = 0; k < array.size; ++k) zeros += is_zero(k);
@@ -562,10 +559,7 @@ std::string output_stores(const Program<T>& program, const Model<double>& model,
         k = end;
         continue;
       }
-      if (!(fill && is_zero(k)))
-        out += dialect.batch()
-                   ? fmt::format("    store({} + {} * lanes, {});\n", name, k, operand(entry[k]))
-                   : fmt::format("    {}[{}] = {};\n", name, k, operand(entry[k]));
+      if (!(fill && is_zero(k))) out += dialect.store(name, k, operand(entry[k]));
       ++k;
     }
   }
@@ -616,8 +610,8 @@ std::vector<bool> trig_nodes(const Program<T>& program, const std::vector<bool>&
 template <class T>
 void plan_kernel_arrays(const Program<T>& program, const Dialect& dialect, CodePlan& plan) {
   const std::vector<KernelRecord>& calls = program.graph.calls;
-  if (dialect.c() && !calls.empty())
-    throw std::logic_error("internal error: a kernel call in C code");
+  if (!dialect.kernel_calls() && !calls.empty())
+    throw std::logic_error(fmt::format("internal error: a kernel call in {} code", dialect.title()));
   plan.call_arrays.assign(calls.size(), {});
   plan.call_in_place.assign(calls.size(), {});
   plan.output_in_place.assign(program.outputs.size(), false);
@@ -631,7 +625,7 @@ void plan_kernel_arrays(const Program<T>& program, const Dialect& dialect, CodeP
       std::size_t offset = 0;
       for (std::size_t a = 0; a < program.outputs.size() && !in_place; ++a) {
         const std::size_t size = program.outputs[a].size;
-        in_place = !dialect.batch() && size == call.outputs[j] && !plan.output_in_place[a];
+        in_place = dialect.lanes() == 0 && size == call.outputs[j] && !plan.output_in_place[a];
         for (std::size_t k = 0; in_place && k < size; ++k)
           in_place = program.stored[offset + k] == first + static_cast<int>(k);
         if (in_place) {
@@ -654,7 +648,7 @@ void plan_kernel_arrays(const Program<T>& program, const Dialect& dialect, CodeP
 template <class T>
 void plan_lanes(const Program<T>& program, const Model<double>& model, Structure structure,
                 const Dialect& dialect, CodePlan& plan) {
-  plan.lanes = !dialect.c() && !dialect.batch() &&
+  plan.lanes = dialect.lane_blocks() &&
                (structure == Structure::Lanes ||
                 (structure == Structure::Auto &&
                  count_marked(program, plan.live).total() < max_lane_function_operations));
@@ -735,7 +729,7 @@ class CodePrinter {
         dialect_(dialect),
         plan_(std::move(plan)),
         scalar_(std::is_same_v<T, float> ? "float" : "double"),
-        type_(dialect.batch() ? "lane" : scalar_),
+        type_(dialect.value_type(scalar_)),
         name_(nodes_.size()),
         per_body_(model.nbodies + 1, 0),
         prefixes_(temporary_prefixes(model)) {}
@@ -750,8 +744,6 @@ class CodePrinter {
   std::string shared_function(std::size_t g) const;
   std::string prologue() const;
   std::string kernel_call(int c);
-  std::string kernel_lane_by_lane(const KernelRecord& call, std::vector<std::string> arguments,
-                                  const std::string& kernel) const;
   std::string statement(int id);
   std::string lanes_body();
   std::string lane_block(const LaneBlock& block, std::vector<std::string>& vector_name);
@@ -794,14 +786,12 @@ std::string CodePrinter<T>::operand(int id) const {
   if (n.op == Op::Const) return literal(n.value);
   if (n.op == Op::Input) {
     const InputRef& in = program_.graph.inputs[n.input];
-    return dialect_.batch() ? fmt::format("{}{}", in.array, in.index)
-                            : fmt::format("{}[{}]", in.array, in.index);
+    return dialect_.input(in.array, in.index);
   }
   if (plan_.trig[id]) {
     const char* function = n.op == Op::Sin ? "sin" : "cos";
     const int index = program_.graph.inputs[nodes_[n.a].input].index;
-    return dialect_.batch() ? fmt::format("{}_q{}", function, index)
-                            : fmt::format("{}{}_q[{}]", dialect_.trig_member(), function, index);
+    return dialect_.trig_value(function, index);
   }
   if (n.op == Op::Result) {  // entry n.input of the results of the call that node n.a made
     const int c = nodes_[n.a].a;
@@ -814,13 +804,10 @@ std::string CodePrinter<T>::operand(int id) const {
   return name_[id];
 }
 
-/// An element of an array of values: in batch code a constant fills every lane.
+/// An element of an array of values (in batch code a constant fills every lane).
 template <class T>
 std::string CodePrinter<T>::element(int id) const {
-  if (!dialect_.batch() || nodes_[id].op != Op::Const) return operand(id);
-  std::string copies = operand(id);
-  for (int l = 1; l < dialect_.lanes; ++l) copies += ", " + operand(id);
-  return "lane{" + copies + "}";
+  return nodes_[id].op == Op::Const ? dialect_.element(operand(id)) : operand(id);
 }
 
 /// Shared function g, with its table of each section's constants.
@@ -867,13 +854,13 @@ std::string CodePrinter<T>::shared_function(std::size_t g) const {
   return text + "}\n\n";
 }
 
-/// What the body does before its statements: discards the arrays that no output reads, loads
-/// into lanes the inputs and trig that batch code reads, and declares the shared functions'
-/// outputs.
+/// What the body does before its statements: discards the arrays that no output reads, reads
+/// the inputs and trig in the dialect's way (batch code loads them into lanes), and declares
+/// the shared functions' outputs.
 template <class T>
 std::string CodePrinter<T>::prologue() const {
   std::map<std::string, bool> used;
-  std::set<int> loads;  // batch code: the input and trig nodes read, loaded into lanes first
+  std::set<int> reads;  // the input and trig nodes read
   auto use = [&](int id) {
     const Node<T>& n = nodes_[id];
     if (n.op == Op::Input)
@@ -882,7 +869,7 @@ std::string CodePrinter<T>::prologue() const {
       used["trig"] = true;
     else
       return;
-    loads.insert(id);
+    reads.insert(id);
   };
   for (std::size_t id = 0; id < nodes_.size(); ++id)
     if (plan_.is_op[id]) program_.graph.for_each_operand(static_cast<int>(id), use);
@@ -898,18 +885,17 @@ std::string CodePrinter<T>::prologue() const {
       out += fmt::format("    {};  // {}\n\n", dialect_.discard(array),
                          array == "q" && used["trig"] ? "read only through trig"
                                                       : "no output of this robot depends on it");
-  if (dialect_.batch() && !loads.empty()) {
-    out += "    // the inputs' lanes\n";
-    for (const int id : loads) {
-      const Node<T>& n = nodes_[id];
-      const InputRef& in = program_.graph.inputs[n.op == Op::Input ? n.input : nodes_[n.a].input];
-      const std::string from =
-          n.op == Op::Input ? in.array : fmt::format("trig.{}_q", n.op == Op::Sin ? "sin" : "cos");
-      out += fmt::format("    lane {}; load({}, {} + {} * lanes);\n", operand(id), operand(id),
-                         from, in.index);
-    }
-    out += "\n";
+  std::vector<Dialect::Read> read;
+  for (const int id : reads) {
+    const Node<T>& n = nodes_[id];
+    const InputRef& in = program_.graph.inputs[n.op == Op::Input ? n.input : nodes_[n.a].input];
+    read.push_back({operand(id),
+                    n.op == Op::Input ? in.array
+                                      : fmt::format("{}{}_q", dialect_.trig_member(),
+                                                    n.op == Op::Sin ? "sin" : "cos"),
+                    in.index});
   }
+  out += dialect_.load(read);
   if (plan_.w_size > 0)
     out += fmt::format(
         "    {} w[{}];  // the outputs of the sections that shared functions compute\n\n", type_,
@@ -966,35 +952,8 @@ std::string CodePrinter<T>::kernel_call(int c) {
       text += fmt::format("    {} {}[{}];\n", type_, array, call.outputs[j]);
     arguments.push_back(array);
   }
-  const std::string kernel = fmt::format("dyngen::kernels::{}", call.kernel);
-  if (!dialect_.batch()) return text + wrapped_call(kernel, arguments);
-  return text + kernel_lane_by_lane(call, std::move(arguments), kernel);
-}
-
-/// A kernel call in batch code, lane by lane: each state's numbers copied out of the lanes, the
-/// scalar kernel, and its results copied back.
-template <class T>
-std::string CodePrinter<T>::kernel_lane_by_lane(const KernelRecord& call,
-                                                std::vector<std::string> arguments,
-                                                const std::string& kernel) const {
-  const std::size_t first_array = call.ints.size() + call.tables.size();
-  const std::size_t arrays = call.inputs.size() + call.outputs.size();
-  std::string declare, copy_in, copy_out;
-  for (std::size_t j = 0; j < arrays; ++j) {
-    const bool input = j < call.inputs.size();
-    const std::string& array = arguments[first_array + j];
-    const std::size_t size = input ? call.inputs[j].size() : call.outputs[j - call.inputs.size()];
-    declare += fmt::format("        {} {}_l[{}];\n", scalar_, array, size);
-    if (input)
-      copy_in += fmt::format("        for (int k = 0; k < {1}; ++k) {0}_l[k] = {0}[k][l];\n",
-                             array, size);
-    else
-      copy_out += fmt::format("        for (int k = 0; k < {1}; ++k) {0}[k][l] = {0}_l[k];\n",
-                              array, size);
-    arguments[first_array + j] = array + "_l";
-  }
-  return "    for (int l = 0; l < lanes; ++l) {\n" + declare + copy_in +
-         wrapped_call(kernel, arguments, "        ") + copy_out + "    }\n";
+  return text + dialect_.kernel_call(call, std::move(arguments),
+                                     fmt::format("dyngen::kernels::{}", call.kernel), scalar_);
 }
 
 /// The statement of node id, which names its value.
@@ -1151,9 +1110,9 @@ std::vector<bool> revolute_angles(const Model<double>& model) {
 
 /// dyngen_sincos calls for the marked q entries into `trig` (the trig's name and member access,
 /// "trig." or "trig->"): one array call per run of consecutive ones, which the compiler can
-/// vectorise. Batch code (`batch`) holds a run's lanes together too, so it is one call as well.
+/// vectorise.
 std::string sincos_calls(const std::vector<bool>& marked, bool single_precision,
-                         const std::string& trig, bool batch = false) {
+                         const std::string& trig, const Dialect& dialect) {
   const char* sincos = single_precision ? "dyngen_sincosf" : "dyngen_sincos";
   const int nq = static_cast<int>(marked.size());
   std::string out;
@@ -1164,17 +1123,7 @@ std::string sincos_calls(const std::vector<bool>& marked, bool single_precision,
     }
     int end = k;
     while (end < nq && marked[end]) ++end;
-    if (batch)
-      out += fmt::format(
-          "    {3}_array(q + {0} * lanes, {4}sin_q + {0} * lanes, {4}cos_q + {0} * lanes, {1} * "
-          "lanes);  // q[{0}..{2}]\n",
-          k, end - k, end - 1, sincos, trig);
-    else if (end - k == 1)
-      out += fmt::format("    {1}(q[{0}], &{2}sin_q[{0}], &{2}cos_q[{0}]);\n", k, sincos, trig);
-    else
-      out += fmt::format(
-          "    {3}_array(q + {0}, {4}sin_q + {0}, {4}cos_q + {0}, {1});  // q[{0}..{2}]\n", k,
-          end - k, end - 1, sincos, trig);
+    out += dialect.sincos_run(k, end - k, sincos, trig);
     k = end;
   }
   return out;
@@ -1182,37 +1131,34 @@ std::string sincos_calls(const std::vector<bool>& marked, bool single_precision,
 
 }  // namespace
 
-std::map<std::string, std::string> Dialect::cmake_language() const {
-  if (c())
-    return {{"standard", "C99"},
-            {"standard_name", "C"},
-            {"language", "C"},
-            {"check_flag", "check_c_compiler_flag"},
-            {"extension", "c"},
-            {"feature", "c_std_99"},
-            {"language_flags", ""},
-            {"enable_check_language", "  enable_language(CXX)  # the check is C++ (GoogleTest)\n"}};
-  return {{"standard", "C++17"},
-          {"standard_name", "C++"},
-          {"language", "CXX"},
-          {"check_flag", "check_cxx_compiler_flag"},
-          {"extension", "cpp"},
-          {"feature", "cxx_std_17"},
-          {"language_flags", " -fno-exceptions -fno-rtti"},
-          {"enable_check_language", ""}};
+std::string Dialect::trig_value(const char* function, int index) const {
+  return fmt::format("{}{}_q[{}]", trig_member(), function, index);
 }
 
-std::string Dialect::size(const std::string& local) const {
-  if (!c()) return local;
-  std::string macro = name + "_" + local;
-  for (char& ch : macro) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-  return macro;
+std::string Dialect::store(std::string_view array, std::size_t k, const std::string& value) const {
+  return fmt::format("    {}[{}] = {};\n", array, k, value);
+}
+
+std::string Dialect::kernel_call(const KernelRecord& /*call*/, std::vector<std::string> arguments,
+                                 const std::string& kernel, const std::string& /*scalar*/) const {
+  return wrapped_call(kernel, arguments);
+}
+
+std::string Dialect::sincos_run(int first, int count, const char* sincos,
+                                const std::string& trig) const {
+  if (count == 1) return fmt::format("    {1}(q[{0}], &{2}sin_q[{0}], &{2}cos_q[{0}]);\n", first, sincos, trig);
+  return fmt::format("    {3}_array(q + {0}, {4}sin_q + {0}, {4}cos_q + {0}, {1});  // q[{0}..{2}]\n",
+                     first, count, first + count - 1, sincos, trig);
+}
+
+const std::vector<std::string>& Dialect::compiler(const Toolchain& toolchain) const {
+  return toolchain.cxx;
 }
 
 std::string emit_joint_trig(const Model<double>& model, bool single_precision,
                             const Dialect& dialect) {
-  const std::string out = sincos_calls(revolute_angles(model), single_precision,
-                                       dialect.trig_member(), dialect.batch());
+  const std::string out =
+      sincos_calls(revolute_angles(model), single_precision, dialect.trig_member(), dialect);
   if (out.empty())
     return fmt::format("    {};  // no revolute joint\n    {};\n", dialect.discard("q"),
                        dialect.discard("trig"));
@@ -1223,11 +1169,9 @@ std::string emit_trig_fill(const Model<double>& model, bool single_precision,
                            const std::vector<bool>& angles, const Dialect& dialect) {
   if (angles == revolute_angles(model) ||
       std::find(angles.begin(), angles.end(), true) == angles.end())
-    return fmt::format("    {}(q, {}trig);\n",
-                       dialect.external(dialect.batch() ? "joint_trig_batch" : "joint_trig"),
-                       dialect.c() ? "&" : "");
+    return fmt::format("    {}(q, {});\n", dialect.joint_trig(), dialect.trig_argument());
   std::string out = "    // the angles this function reads\n";
-  return out.append(sincos_calls(angles, single_precision, "trig.", dialect.batch()));
+  return out.append(sincos_calls(angles, single_precision, "trig.", dialect));
 }
 
 template OpCounts count_ops<double>(const Program<double>&, bool);

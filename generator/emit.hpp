@@ -6,6 +6,9 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -70,56 +73,118 @@ inline constexpr long max_lane_function_operations = 40000;
 /// Structure::Lanes: filling a vector's lanes costs about as much as an operation in each.
 inline constexpr std::size_t min_lane_operations = 8;
 
-/// The language the code is printed in.
-enum class Language { Cpp, C };
+struct Toolchain;
 
-/// Where C and C++ spell the same program differently: C has no namespace, so the names a
-/// header declares carry the package's name as a prefix, and no references, so the trig comes
-/// by pointer. Statements, their order and so the bits are the same in both.
-struct Dialect {
-  Language language = Language::Cpp;
-  std::string name;  // the package's: C++ namespace, C prefix
-  /// Batch code (C++ only): each value is a `lane` of this many states (GCC and clang vector
-  /// types), inputs and outputs hold entry i of state l at [i * lanes + l]; 0: scalar code.
-  int lanes = 0;
+/// How a backend spells a traced program (Halide's CodeGen_C and its subclasses): names,
+/// types, statements, declarations and how the code is compiled. The answers here are C++'s,
+/// the language the other backends derive from: C (backend_c.cpp) has no namespace, so the
+/// names a header declares carry the package's name as a prefix, and no references, so the
+/// trig comes by pointer; batches (backend_batch.cpp) hold each value in vector lanes. The
+/// statements, their order and so the bits are the same in every dialect.
+class Dialect {
+ public:
+  explicit Dialect(std::string name = "") : name_(std::move(name)) {}
+  virtual ~Dialect() = default;
 
-  bool c() const { return language == Language::C; }
-  bool batch() const { return lanes > 0; }
+  /// The package's name: C++ namespace, C prefix.
+  const std::string& name() const { return name_; }
+
+  // ---- names
   /// A name the header declares, as code outside the namespace sees it in C: "ur5_rnea".
-  std::string external(const std::string& local) const { return c() ? name + "_" + local : local; }
+  virtual std::string external(const std::string& local) const { return local; }
   /// "nq" in C++ (a constant of the namespace), "UR5_NQ" in C (a macro).
-  std::string size(const std::string& local) const;
+  virtual std::string size(const std::string& local) const { return local; }
   /// A name the header declares, from the global scope: "::ur5::rnea", "::ur5_rnea".
-  std::string qualified(const std::string& local) const {
-    return "::" + (c() ? external(local) : name + "::" + local);
+  virtual std::string qualified(const std::string& local) const {
+    return "::" + name_ + "::" + local;
   }
   /// A size constant from the global scope: "::ur5::nq", "UR5_NQ".
-  std::string size_outside(const std::string& local) const {
-    return c() ? size(local) : "::" + name + "::" + local;
+  virtual std::string size_outside(const std::string& local) const {
+    return "::" + name_ + "::" + local;
   }
   /// What the header's names start with, seen from outside: "ur5::", "ur5_".
-  std::string prefix() const { return c() ? name + "_" : name + "::"; }
+  virtual std::string prefix() const { return name_ + "::"; }
   /// The package's header and source: "ur5_dynamics.hpp", "ur5_dynamics.c".
-  std::string header() const { return name + (c() ? "_dynamics.h" : "_dynamics.hpp"); }
-  std::string source() const { return name + (c() ? "_dynamics.c" : "_dynamics.cpp"); }
-  /// How f passes its trig to f_trig.
-  const char* trig_argument() const { return c() ? "&trig" : "trig"; }
-  /// The values of templates/CMakeLists.txt.in that name the package's language.
-  std::map<std::string, std::string> cmake_language() const;
-  std::string discard(const std::string& x) const {
-    return c() ? "(void)" + x : "static_cast<void>(" + x + ")";
+  virtual std::string header() const { return name_ + "_dynamics.hpp"; }
+  virtual std::string source() const { return name_ + "_dynamics.cpp"; }
+  /// Algorithm a's function: "rnea", "ur5_rnea", "rnea_batch" (its _trig form adds "_trig").
+  virtual std::string function(const std::string& a) const { return external(a); }
+  /// The function that fills a trig from q, and the trig's type.
+  virtual std::string joint_trig() const { return external("joint_trig"); }
+  virtual std::string trig_type() const { return external("JointTrig"); }
+
+  // ---- statements
+  /// States per value (batches: vector lanes); 0: one state, scalar code.
+  virtual int lanes() const { return 0; }
+  /// Whether the code may call dyngen_kernels.hpp (C++ templates).
+  virtual bool kernel_calls() const { return true; }
+  /// Whether a function's repeated limbs may be computed in vector statements (GCC's and
+  /// clang's vector types) within scalar code.
+  virtual bool lane_blocks() const { return true; }
+  /// The type of each computed value.
+  virtual std::string value_type(const std::string& scalar) const { return scalar; }
+  /// Entry index of input array: "q[3]".
+  virtual std::string input(const std::string& array, int index) const {
+    return array + "[" + std::to_string(index) + "]";
   }
-  const char* table() const { return c() ? "static const" : "constexpr"; }
-  const char* no_throw() const { return c() ? "" : " noexcept"; }
+  /// sin or cos (function) of q[index], read from the trig.
+  virtual std::string trig_value(const char* function, int index) const;
+  /// A constant as an element of an array of computed values.
+  virtual std::string element(const std::string& constant) const { return constant; }
+  /// The statement that stores value into entry k of output array.
+  virtual std::string store(std::string_view array, std::size_t k, const std::string& value) const;
+  /// Where entry k of an array begins, as an index: "k", or "k * lanes".
+  virtual std::string entry(std::size_t k) const { return std::to_string(k); }
+  /// An input or trig value that the body reads: its name and where it comes from.
+  struct Read {
+    std::string value, from;
+    int index;
+  };
+  /// What the body does with the values it reads before its statements (batches load them
+  /// into lanes).
+  virtual std::string load(const std::vector<Read>& /*reads*/) const { return ""; }
+  /// The statements of a kernel call (kernel: its qualified name) over its arguments, which
+  /// end with the arrays it reads and writes; scalar: the scalar type.
+  virtual std::string kernel_call(const KernelRecord& call, std::vector<std::string> arguments,
+                                  const std::string& kernel, const std::string& scalar) const;
+  /// dyngen_sincos (sincos: its name) of q[first .. first + count) into trig's sin_q and cos_q.
+  virtual std::string sincos_run(int first, int count, const char* sincos,
+                                 const std::string& trig) const;
+
+  // ---- declarations
+  /// A statement that uses x without effect.
+  virtual std::string discard(const std::string& x) const {
+    return "static_cast<void>(" + x + ")";
+  }
+  /// How a table of constants is declared.
+  virtual const char* table() const { return "constexpr"; }
+  /// What a function's declaration ends with.
+  virtual const char* no_throw() const { return " noexcept"; }
   /// How a _trig function and joint_trig reach the trig they are given.
-  const char* trig_member() const { return c() ? "trig->" : "trig."; }
-  /// The _trig functions' parameter.
-  std::string trig_parameter() const {
-    return c()       ? fmt::format("const {}_JointTrig* trig", name)
-           : batch() ? "const JointTrigBatch& trig"
-                     : "const JointTrig& trig";
+  virtual const char* trig_member() const { return "trig."; }
+  /// The _trig functions' parameter, and how f passes its trig to f_trig.
+  virtual std::string trig_parameter() const { return "const " + trig_type() + "& trig"; }
+  virtual const char* trig_argument() const { return "trig"; }
+
+  // ---- compiling
+  /// The language's name for people ("C++") and in --lang ("c++").
+  virtual const char* title() const { return "C++"; }
+  virtual const char* language() const { return "c++"; }
+  /// The toolchain's compiler for the language, its standard, and the flags it adds.
+  virtual const std::vector<std::string>& compiler(const Toolchain& toolchain) const;
+  virtual const char* standard_flag() const { return "-std=c++17"; }
+  virtual std::vector<std::string> language_flags() const {
+    return {"-fno-exceptions", "-fno-rtti"};
   }
+
+ private:
+  std::string name_;
 };
+
+/// "    f(a, b, ...);" (indent first) with the arguments wrapped before 100 columns under the
+/// first.
+std::string wrapped_call(const std::string& function, const std::vector<std::string>& arguments,
+                         const std::string& indent = "    ");
 
 struct EmittedCode {
   std::string helpers;  // namespace-scope definitions the body calls (the shared functions)
@@ -138,18 +203,18 @@ struct EmittedCode {
 /// state's numbers), so that every lane computes the scalar code's operations.
 template <class T>
 EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure,
-                      const Dialect& dialect = {});
+                      const Dialect& dialect = Dialect());
 
 /// The body of joint_trig(q, trig): dyngen_sincos (dyngen_sincosf in single precision) of every
 /// revolute joint's angle.
 std::string emit_joint_trig(const Model<double>& model, bool single_precision,
-                            const Dialect& dialect = {});
+                            const Dialect& dialect = Dialect());
 
 /// How a plain f(q, ...) fills its trig before calling f_trig: joint_trig(q, trig), or, where
 /// its body reads only some of the revolute angles (`angles`, by q index; ur5's rnea leaves out
 /// the first joint, which turns about gravity's axis), those angles alone.
 std::string emit_trig_fill(const Model<double>& model, bool single_precision,
-                           const std::vector<bool>& angles, const Dialect& dialect = {});
+                           const std::vector<bool>& angles, const Dialect& dialect = Dialect());
 
 /// "revolute +z", "prismatic axis (0.6, 0, 0.8)"
 std::string joint_description(const Model<double>& model, int body);

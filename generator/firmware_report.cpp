@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "backend.hpp"
 #include "footprint.hpp"
 #include "names.hpp"
 #include "output.hpp"
@@ -141,15 +142,16 @@ struct FirmwareBuild {
   const Generated& generated;
   fs::path package_dir, build;
   std::string target;  // its name: "cortex-m4f"
-  bool c, single;
-  std::string ns, source;
+  bool single;
+  std::string ns;
+  const Dialect& dialect;  // the package's language
 };
 
 /// The harness (templates/firmware_harness.cpp.in), the startup code and the linker script of
 /// the target, in b.build.
 void write_harness(const FirmwareBuild& b) {
   const GenerateOptions& generate_options = b.options.generate;
-  const Dialect dialect{generate_options.language, b.ns};
+  const Dialect& dialect = b.dialect;
   const std::string& ns = b.ns;
   std::string quaternions;
   for (int i = 0; i < b.robot.model.nbodies; ++i)
@@ -196,25 +198,26 @@ void write_harness(const FirmwareBuild& b) {
 /// The images for the target (firmware.elf over every state, count.elf over one) and the
 /// harness for the host, from the files write_harness wrote.
 void compile_images(const FirmwareBuild& b) {
-  const bool c = b.c;
+  const Dialect& dialect = b.dialect;
+  const std::unique_ptr<Backend> c = language_backend("c", b.ns), cxx = language_backend("c++", b.ns);
   const fs::path& build = b.build;
   const Toolchain cross = toolchain(b.target), host = toolchain("host");
   std::vector<std::string> warnings{"-Wall", "-Wextra", "-Werror"};
   if (b.single) warnings.push_back("-Wdouble-promotion");
   const auto path = [](const fs::path& p) { return shell_quoted(p.string()); };
-  const std::string package_flags = words(compile_flags(cross, c)) + " " + words(warnings);
-  const std::string cxx_flags = words(compile_flags(cross, false)) + " " + words(warnings);
+  const std::string package_flags = words(compile_flags(cross, dialect)) + " " + words(warnings);
+  const std::string cxx_flags = words(compile_flags(cross, *cxx->dialect())) + " " + words(warnings);
   const std::string include = "-I" + path(b.package_dir);
   auto compile = [&](const std::string& what, const std::string& command) {
     output_of(command, what);
   };
   compile("cross-compiling the package",
-          fmt::format("{} {} {} -c {} -o {}", words(c ? cross.c : cross.cxx), package_flags,
-                      c ? "-std=c99" : "-std=c++17", path(b.package_dir / b.source),
+          fmt::format("{} {} {} -c {} -o {}", words(dialect.compiler(cross)), package_flags,
+                      dialect.standard_flag(), path(b.package_dir / dialect.source()),
                       path(build / "dynamics.o")));
   compile("cross-compiling startup.c",
           fmt::format("{} {} -std=c99 -c {} -o {}", words(cross.c),
-                      words(compile_flags(cross, true)), path(build / "startup.c"),
+                      words(compile_flags(cross, *c->dialect())), path(build / "startup.c"),
                       path(build / "startup.o")));
   for (const auto& [image, states] :
        {std::pair{"firmware", b.options.states}, std::pair{"count", 1}}) {
@@ -229,12 +232,12 @@ void compile_images(const FirmwareBuild& b) {
                         path(build / "dynamics.o"), path(build / (std::string(image) + ".elf"))));
   }
   compile("compiling the package for the host",
-          fmt::format("{} {} {} -c {} -o {}", words(c ? host.c : host.cxx),
-                      words(compile_flags(host, c)), c ? "-std=c99" : "-std=c++17",
-                      path(b.package_dir / b.source), path(build / "host_dynamics.o")));
+          fmt::format("{} {} {} -c {} -o {}", words(dialect.compiler(host)),
+                      words(compile_flags(host, dialect)), dialect.standard_flag(),
+                      path(b.package_dir / dialect.source()), path(build / "host_dynamics.o")));
   compile("compiling the harness for the host",
           fmt::format("{} {} -std=c++17 {} {} {} -o {}", words(host.cxx),
-                      words(compile_flags(host, false)), include, path(build / "harness.cpp"),
+                      words(compile_flags(host, *cxx->dialect())), include, path(build / "harness.cpp"),
                       path(build / "host_dynamics.o"), path(build / "host")));
 
 }
@@ -281,7 +284,7 @@ std::vector<std::string> write_firmware_report(const FirmwareBuild& b, FirmwareR
   const GenerateOptions& generate_options = options.generate;
   const Generated& generated = b.generated;
   const Robot& robot = b.robot;
-  const bool c = b.c, single = b.single, equal = run.equal, soft_double = run.soft_double;
+  const bool single = b.single, equal = run.equal, soft_double = run.soft_double;
   const std::string& target = b.target;
   const std::vector<std::string>& linked_forbidden = run.linked_forbidden;
   std::map<std::string, long>& stack_used = run.stack_used;
@@ -296,7 +299,7 @@ std::vector<std::string> write_firmware_report(const FirmwareBuild& b, FirmwareR
   report["machine"] = machine;
   report["compiler"] = generated.footprint->compiler;
   report["scalar"] = single ? "float" : "double";
-  report["lang"] = c ? "c" : "c++";
+  report["lang"] = b.dialect.language();
   report["states"] = options.states;
   report["bits_equal"] = equal;
   report["forbidden_symbols"] = linked_forbidden;
@@ -336,7 +339,7 @@ std::vector<std::string> write_firmware_report(const FirmwareBuild& b, FirmwareR
       "- Software double in the image: {}\n"
       "- Every stack bound at least the measured use and at most 1.5 times it: {}\n",
       markdown_code(robot.name), processor_name(generate_options.target), machine,
-      single ? "float" : "double", c ? "C" : "C++",
+      single ? "float" : "double", b.dialect.title(),
       markdown_code(generated.footprint->compiler), rows,
       generated.footprint->common_code_bytes, options.states, yes_no_equal,
       fmt::join(forbidden_symbols, ", "),
@@ -393,18 +396,17 @@ std::vector<std::string> make_firmware_report(const Robot& robot,
   package_options.measure = true;
   const Generated generated = generate(robot, package_options);
   write_package(package_dir.string(), generated.files, options.force);
-  const bool c = generate_options.language == Language::C;
   const std::string& ns = generate_options.name;
+  const std::unique_ptr<Backend> language = language_backend(generate_options.language, ns);
   const FirmwareBuild b{robot,
                         options,
                         generated,
                         package_dir,
                         build,
                         target,
-                        c,
                         generate_options.single_precision,
                         ns,
-                        Dialect{generate_options.language, ns}.source()};
+                        *language->dialect()};
 
   step(2, fmt::format("writing and cross-compiling the harness in {}", build.string()));
   fs::remove_all(build);

@@ -129,18 +129,18 @@ Toolchain toolchain(const std::string& target) {
   return t;
 }
 
-std::vector<std::string> compile_flags(const Toolchain& toolchain, bool c) {
+std::vector<std::string> compile_flags(const Toolchain& toolchain, const Dialect& dialect) {
   std::vector<std::string> flags = toolchain.flags;
   flags.insert(flags.end(), {"-O2", "-ffp-contract=off", "-fno-fast-math"});
-  if (!c) flags.insert(flags.end(), {"-fno-exceptions", "-fno-rtti"});
+  const std::vector<std::string> language = dialect.language_flags();
+  flags.insert(flags.end(), language.begin(), language.end());
   return flags;
 }
 
-Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::string& source,
-                            const std::vector<std::string>& algorithms, const std::string& prefix,
-                            const Toolchain& toolchain) {
-  const bool c = source.ends_with(".c");
-  const std::vector<std::string>& compiler = c ? toolchain.c : toolchain.cxx;
+Footprint measure_footprint(const std::vector<GeneratedFile>& files, const Dialect& dialect,
+                            const std::vector<std::string>& algorithms, const Toolchain& toolchain) {
+  const std::vector<std::string>& compiler = dialect.compiler(toolchain);
+  const std::string source = dialect.source(), prefix = dialect.prefix();
   const fs::path dir =
       fs::temp_directory_path() / fmt::format("dyngen-footprint-{}", static_cast<long>(getpid()));
   struct Scratch {
@@ -158,12 +158,12 @@ Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::
   const std::string version =
       output_of(followed_by(compiler, {"-dumpfullversion"}),
                 fmt::format("measuring the code needs {} (GCC)", fmt::join(compiler, " ")));
-  const std::vector<std::string> flags = compile_flags(toolchain, c);
+  const std::vector<std::string> flags = compile_flags(toolchain, dialect);
   const fs::path object = dir / "package.o";
   // without identical code folding, each function keeps its own code and call graph node (GCC
   // would otherwise make aba_derivatives_shape_0 an alias of an identical aba_shape_0)
   output_of(followed_by(followed_by(compiler, flags),
-                        {c ? "-std=c99" : "-std=c++17", "-fno-ipa-icf", "-fstack-usage",
+                        {dialect.standard_flag(), "-fno-ipa-icf", "-fstack-usage",
                          "-fcallgraph-info=su", "-c", (dir / source).string(), "-o",
                          object.string()}),
             "compiling the package to measure it");

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "emit.hpp"
 #include "output.hpp"
 
 namespace dyngen::gen {
@@ -24,10 +25,10 @@ struct Toolchain {
 /// expected; a Cortex-M: arm-none-eabi-gcc with its -mcpu, -mfpu and -mfloat-abi.
 Toolchain toolchain(const std::string& target);
 
-/// The flags a package is compiled with for the toolchain's processor: its processor flags, -O2
-/// and the floating-point semantics of the bit-for-bit contract; for C++ (c false) no exceptions
-/// and no RTTI.
-std::vector<std::string> compile_flags(const Toolchain& toolchain, bool c);
+/// The flags code in dialect's language is compiled with for the toolchain's processor: its
+/// processor flags, -O2, the floating-point semantics of the bit-for-bit contract and the
+/// language's flags (C++: no exceptions and no RTTI).
+std::vector<std::string> compile_flags(const Toolchain& toolchain, const Dialect& dialect);
 
 struct FunctionFootprint {
   std::string algorithm;
@@ -42,12 +43,11 @@ struct Footprint {
   long common_code_bytes = 0;       // joint_trig, sin and cos, kernels: shared by the functions
 };
 
-/// Compiles `source` (a package's _dynamics.c or .cpp, among `files`) with the toolchain at -O2
-/// in a scratch directory, and measures each of `algorithms`. `prefix` is how the package names
-/// them ("ur5::" in C++, "ur5_" in C). Throws InputError when the compiler is missing or fails.
-Footprint measure_footprint(const std::vector<GeneratedFile>& files, const std::string& source,
-                            const std::vector<std::string>& algorithms, const std::string& prefix,
-                            const Toolchain& toolchain);
+/// Compiles the package's source in dialect (its _dynamics.c or .cpp, among `files`) with the
+/// toolchain at -O2 in a scratch directory, and measures each of `algorithms`. Throws InputError
+/// when the compiler is missing or fails.
+Footprint measure_footprint(const std::vector<GeneratedFile>& files, const Dialect& dialect,
+                            const std::vector<std::string>& algorithms, const Toolchain& toolchain);
 
 /// The footprint as the banner records it.
 std::string footprint_text(const Footprint& footprint);

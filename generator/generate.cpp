@@ -11,6 +11,7 @@
 
 #include "dyngen/numerics/conditioning.hpp"
 
+#include "backend.hpp"
 #include "footprint.hpp"
 #include "names.hpp"
 #include "range.hpp"
@@ -48,11 +49,6 @@ long long frame_columns(const Model<double>& model) {
   for (const Frame<double>& f : model.frames)
     for (int j = f.body; j >= 0; j = model.parent[j]) columns += joint_nv(model.joint_type[j]);
   return columns;
-}
-
-std::string upper(std::string s) {
-  for (char& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-  return s;
 }
 
 /// text as comment lines: each line after marker, with safe_text's escapes (the banner holds
@@ -124,105 +120,6 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
   return fmt::format("{}\n{}", text, conditioning);
 }
 
-std::string extent_in(const Extent& e, const Dialect& dialect) {
-  return extent_text(e, dialect.size("nq"), dialect.size("nv"), dialect.size("nframes"));
-}
-
-/// "void name(a, b, ...) noexcept" (C: no noexcept) wrapped at 100 columns, continuation lines
-/// under the first parameter.
-std::string declaration(const std::string& name, const std::vector<std::string>& parameters,
-                        const Dialect& dialect) {
-  const std::string head = fmt::format("void {}(", name);
-  const std::size_t indent = head.size();
-  std::string text = head;
-  std::size_t column = indent;
-  for (std::size_t k = 0; k < parameters.size(); ++k) {
-    const std::string item =
-        k + 1 < parameters.size() ? parameters[k] + ", " : parameters[k] + ")" + dialect.no_throw();
-    if (column + item.size() > 100 && column > indent) {
-      while (text.back() == ' ') text.pop_back();
-      text += fmt::format("\n{:{}}", "", indent);
-      column = indent;
-    }
-    text += item;
-    column += item.size();
-  }
-  return text;
-}
-
-/// The generated function's parameters: the inputs, with `trig` after q in the _trig form, then
-/// the outputs; batch arrays hold `lanes` states.
-std::vector<std::string> parameters(const AlgorithmSpec<double>& spec, const std::string& scalar,
-                                    bool trig, const Dialect& dialect) {
-  const char* lanes = dialect.batch() ? " * lanes" : "";
-  std::vector<std::string> out;
-  for (const ArraySpec& a : spec.inputs) {
-    out.push_back(
-        fmt::format("const {} {}[{}{}]", scalar, a.name, extent_in(a.extent, dialect), lanes));
-    if (trig && a.name == "q") out.push_back(dialect.trig_parameter());
-  }
-  for (const ArraySpec& a : spec.outputs)
-    out.push_back(fmt::format("{} {}[{}{}]", scalar, a.name, extent_in(a.extent, dialect), lanes));
-  return out;
-}
-
-/// The parameters of f_many: the count, then the arrays of count states each.
-std::vector<std::string> many_parameters(const AlgorithmSpec<double>& spec,
-                                         const std::string& scalar) {
-  std::vector<std::string> out{"long count"};
-  for (const ArraySpec& a : spec.inputs) out.push_back(fmt::format("const {}* {}", scalar, a.name));
-  for (const ArraySpec& a : spec.outputs) out.push_back(fmt::format("{}* {}", scalar, a.name));
-  return out;
-}
-
-/// f_many's body in many.cpp.in: each batch's arrays gathered into lanes (gather), f_batch's
-/// arguments, and its outputs scattered back (scatter).
-std::map<std::string, std::string> many_values(const AlgorithmSpec<double>& spec,
-                                               const std::string& scalar, const Dialect& dialect) {
-  std::string gather, scatter, arguments;
-  for (const auto* list : {&spec.inputs, &spec.outputs})
-    for (const ArraySpec& a : *list) {
-      const std::string n = extent_in(a.extent, dialect);
-      gather += fmt::format("        {} {}_lanes[{} * lanes];\n", scalar, a.name, n);
-      if (list == &spec.inputs)
-        gather += fmt::format("        to_lanes<{}>({}, first, count, {}_lanes);\n", n, a.name,
-                              a.name);
-      else
-        scatter += fmt::format("        from_lanes<{}>({}_lanes, first, count, {});\n", n,
-                               a.name, a.name);
-      arguments += fmt::format("{}{}_lanes", arguments.empty() ? "" : ", ", a.name);
-    }
-  return {{"gather", gather}, {"scatter", scatter}, {"arguments", arguments}};
-}
-
-/// The header's list of the arrays that the requested functions take, each once, and how q holds
-/// the free joints' positions (`free_joints`: lines to add to q's).
-std::string array_docs(const std::vector<Algorithm>& algorithms,
-                       const std::vector<std::string>& free_joints, const Dialect& dialect) {
-  std::vector<std::pair<std::string, const ArraySpec*>> entries;
-  std::size_t width = 0;
-  for (const Algorithm& name : algorithms) {
-    const AlgorithmSpec<double>& spec = algorithm_spec(name);
-    for (const auto* list : {&spec.inputs, &spec.outputs})
-      for (const ArraySpec& a : *list) {
-        if (std::any_of(entries.begin(), entries.end(),
-                        [&](const auto& e) { return e.second->name == a.name; }))
-          continue;
-        entries.emplace_back(fmt::format("{}[{}]", a.name, extent_in(a.extent, dialect)), &a);
-        width = std::max(width, entries.back().first.size() + 2);
-      }
-  }
-  std::string text;
-  for (const auto& [array, a] : entries) {
-    text += fmt::format("///   {:<{}}{}\n", array, width, a->meaning);
-    if (a->name == "q")
-      for (const std::string& line : free_joints)
-        text += fmt::format("///   {:<{}}{}\n", "", width, line);
-  }
-  if (!text.empty()) text.pop_back();
-  return text;
-}
-
 template <class T>
 std::string model_records(const Model<double>& model) {
   std::string out;
@@ -272,134 +169,6 @@ std::string frame_records(const Model<double>& model) {
                        list({r.x, r.y, r.z}));
   }
   return out + "};\n";
-}
-
-/// The frames' names as initialiser lines, "    \"tool0\",\n" each.
-std::string frame_name_lines(const Model<double>& model) {
-  std::string names;
-  for (const Frame<double>& f : model.frames)
-    names += fmt::format("    {},\n", string_literal(f.name));
-  return names;
-}
-
-/// The header's frame count and names, or "" without frames.
-std::string frame_declarations(const Model<double>& model, const Dialect& dialect) {
-  if (model.frames.empty()) return "";
-  const std::string intro =
-      "\n/// The frames whose placements, Jacobians or accelerations the functions compute, in "
-      "order\n/// (--frames).\n";
-  if (dialect.c())
-    return fmt::format("{}#define {} {}\nextern const char* const {}[{}];\n", intro,
-                       dialect.size("nframes"), model.frames.size(),
-                       dialect.external("frame_names"), dialect.size("nframes"));
-  return fmt::format(
-      "{}inline constexpr int nframes = {};\ninline constexpr const char* frame_names[nframes] = "
-      "{{\n{}}};\n",
-      intro, model.frames.size(), frame_name_lines(model));
-}
-
-/// The C source's definition of the frame names, or "".
-std::string frame_names_definition(const Model<double>& model, const Dialect& dialect) {
-  if (model.frames.empty()) return "";
-  return fmt::format("\nconst char* const {}[{}] = {{\n{}}};\n", dialect.external("frame_names"),
-                     dialect.size("nframes"), frame_name_lines(model));
-}
-
-/// The NumPy shape of one state's entries of an array, as a C++ initialiser over the package's
-/// constants: {::ur5::nframes, 3, 3} for a rotation per frame, {::ur5::nv, ::ur5::nv} for M.
-std::string python_shape(const Extent& e, const std::string& ns) {
-  const std::string scope = "::" + ns + "::";
-  std::vector<std::string> dims;
-  if (e.per_frame) dims.push_back(scope + "nframes");
-  if (e.count == 9)  // a rotation, row-major
-    dims.insert(dims.end(), {"3", "3"});
-  else if (e.count > 1)
-    dims.push_back(std::to_string(e.count));
-  if (e.size == Extent::Nq) dims.push_back(scope + "nq");
-  if (e.size == Extent::Nv) dims.push_back(scope + "nv");
-  if (e.size == Extent::NvNv) dims.insert(dims.end(), {scope + "nv", scope + "nv"});
-  std::string text;
-  for (const std::string& d : dims) text += (text.empty() ? "" : ", ") + d;
-  return "{" + text + "}";
-}
-
-/// The shapes of an array for one and for N states, in words for a docstring: "(nv,) or (N,
-/// nv)", "(nframes, 3, 3) or (N, nframes, 3, 3)".
-std::string python_shape_words(const Extent& e, const std::string& ns) {
-  const std::string scope = "::" + ns + "::";
-  std::string dims = python_shape(e, ns);
-  for (std::size_t at; (at = dims.find(scope)) != std::string::npos;) dims.erase(at, scope.size());
-  dims = dims.substr(1, dims.size() - 2);
-  return fmt::format("({}{}) or (N, {})", dims, dims.find(',') == std::string::npos ? "," : "",
-                     dims);
-}
-
-/// One function's m.def in the Python module (python_function.cpp.in).
-std::string python_function(const AlgorithmSpec<double>& spec, const std::string& ns) {
-  std::string parameters, input_arguments, output_arguments, pointers, arguments, keywords, doc;
-  for (std::size_t k = 0; k < spec.inputs.size(); ++k) {
-    const ArraySpec& a = spec.inputs[k];
-    parameters += fmt::format("{}const py::array& {}", k ? ", " : "", a.name);
-    input_arguments += fmt::format("{}{{\"{}\", {}}}", k ? ", " : "", a.name,
-                                   python_shape(a.extent, ns));
-    pointers += fmt::format("{}x[{}]", k ? ", " : "", k);
-    arguments += fmt::format("{}&{}", k ? ", " : "", a.name);
-    keywords += fmt::format("{}py::arg(\"{}\")", k ? ", " : "", a.name);
-    doc += fmt::format("\n{}: {}, {}", a.name, python_shape_words(a.extent, ns), a.meaning);
-  }
-  doc += spec.outputs.size() == 1 ? "\nReturns" : "\nReturns a tuple of";
-  for (std::size_t k = 0; k < spec.outputs.size(); ++k) {
-    const ArraySpec& a = spec.outputs[k];
-    output_arguments += fmt::format("{}{{\"{}\", {}}}", k ? ", " : "", a.name,
-                                    python_shape(a.extent, ns));
-    pointers += fmt::format(", y[{}]", k);
-    doc += fmt::format("{}\n{}: {}, {}", k ? "," : ":", a.name, python_shape_words(a.extent, ns),
-                       a.meaning);
-  }
-  return fill("python_function.cpp.in",
-              {{"name", std::string(spec.name)},
-               {"namespace", ns},
-               {"parameters", parameters},
-               {"inputs", std::to_string(spec.inputs.size())},
-               {"outputs", std::to_string(spec.outputs.size())},
-               {"input_arguments", input_arguments},
-               {"output_arguments", output_arguments},
-               {"pointers", pointers},
-               {"arguments", arguments},
-               {"keywords", keywords},
-               {"doc", python_literal(std::string(spec.summary) + "\n" + doc)}});
-}
-
-/// A list of names for the Python module: str_list({"a", "b"}) with python_literal's literals.
-std::string python_names(const std::vector<std::string>& names) {
-  std::string list;
-  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + python_literal(name);
-  return "str_list({" + list + "})";
-}
-
-/// The Python module's constants beyond nq, nv, lanes and dtype.
-std::string python_attributes(const Model<double>& model) {
-  const Vec3<double>& g = model.gravity;
-  double mass = 0;
-  std::string quaternions;
-  for (int i = 0; i < model.nbodies; ++i) {
-    mass += model.I[i].m;
-    if (model.joint_type[i] == JointType::Free)
-      quaternions += fmt::format("{}{}", quaternions.empty() ? "" : ", ", model.q_index[i] + 3);
-  }
-  std::string text = fmt::format(
-      "    m.attr(\"joint_names\") = {};\n"
-      "    m.attr(\"gravity_acceleration\") = py::make_tuple({}, {}, {});  // m/s^2\n"
-      "    m.attr(\"total_mass\") = {};\n"
-      "    // q[k:k + 4] is a free joint's unit quaternion (w, x, y, z) for each k\n"
-      "    m.attr(\"quaternion_indices\") = py::make_tuple({});\n",
-      python_names(velocity_names(model)), literal(g.x), literal(g.y), literal(g.z),
-      literal(mass), quaternions);
-  std::vector<std::string> frames;
-  for (const Frame<double>& f : model.frames) frames.push_back(f.name);
-  if (!frames.empty())
-    text += fmt::format("    m.attr(\"frame_names\") = {};\n", python_names(frames));
-  return text;
 }
 
 }  // namespace
@@ -505,54 +274,21 @@ std::string range_text(const std::vector<AlgorithmRange>& ranges, bool single_pr
       overflows);
 }
 
-/// What generate_as knows of the package it writes: the robot, its model, the options, how its
-/// code is spelled (dialect; batch_dialect for batches, with 0 lanes when there are none).
-struct PackageContext {
-  PackageContext(const Robot& r, const Model<double>& m, const GenerateOptions& o, bool in_float)
-      : robot(r),
-        model(m),
-        options(o),
-        dialect{o.language, o.name},
-        batch_dialect{Language::Cpp, o.name, o.batch},
-        ns(o.name),
-        scalar(in_float ? "float" : "double"),
-        single(in_float),
-        header(dialect.header()),
-        source(dialect.source()) {}
-
-  const Robot& robot;
-  const Model<double>& model;
-  const GenerateOptions& options;
-  Dialect dialect;
-  Dialect batch_dialect;
-  std::string ns, scalar;
-  bool single;
-  std::string header, source;  // the code's file names
-};
-
-/// The package's functions as text, by the part of the files they go in, filled algorithm by
-/// algorithm (add_function, add_batch_function).
-struct FunctionTexts {
-  std::string declarations, definitions, cases, batch_declarations, batch_definitions,
-      python_functions;
-  bool calls_kernels = false;
-};
-
-/// Algorithm a traced for the package's code, refused when C would need kernels or a constant
-/// of the model overflows T.
+/// Algorithm a traced for the package's code in dialect, refused when the dialect would need
+/// kernels it has not, or a constant of the model overflows T.
 template <class T>
-Program<T> traced_program(const PackageContext& p, const Algorithm& a) {
-  // the kernels run in vector lanes in C++ on the host (C has none; a Cortex-M no lanes)
-  const bool vector_kernels = !p.dialect.c() && p.options.target == Target::Host;
+Program<T> traced_program(const PackageContext& p, const Dialect& dialect, const Algorithm& a) {
+  // the kernels run in vector lanes on the host (a Cortex-M has no lanes)
+  const bool vector_kernels = dialect.kernel_calls() && p.options.target == Target::Host;
   Program<T> program = trace<T>(a, p.model, true, default_call_kernels_from, vector_kernels);
-  // the kernels are C++ templates; unrolled into C, big robots' derivatives take GCC too long
+  // the kernels are C++ templates; unrolled, big robots' derivatives take GCC too long
   // (docs/performance.md, "The generator's limits")
-  if (p.dialect.c() && !program.graph.calls.empty())
+  if (!dialect.kernel_calls() && !program.graph.calls.empty())
     throw InputError(fmt::format(
         "{}: {} of this robot calls kernels (dyngen_kernels.hpp, for its {} degrees of freedom), "
-        "which C output does not have: generate it as C++ (--lang c++), or leave it out of the "
-        "C package (--algorithms)",
-        p.robot.path, a, p.model.nv));
+        "which {} output does not have: generate it as C++ (--lang c++), or leave it out of the "
+        "{} package (--algorithms)",
+        p.robot.path, a, p.model.nv, dialect.title(), dialect.title()));
   if (const int id = first_non_finite_constant(program); id >= 0) {
     const Node<T>& node = program.graph.nodes[id];
     throw InputError(fmt::format(
@@ -564,233 +300,51 @@ Program<T> traced_program(const PackageContext& p, const Algorithm& a) {
   return program;
 }
 
-/// The arguments the check passes to f (x[0].data(), ..., y[0].data(), ...) and those that f
-/// passes to f_trig (q, trig, v, ..., tau).
-std::pair<std::string, std::string> call_arguments(const AlgorithmSpec<double>& spec,
-                                                   const Dialect& dialect) {
-  std::string trig_arguments, arguments;
-  for (const ArraySpec& x : spec.inputs) {
-    trig_arguments += fmt::format("{}{}", trig_arguments.empty() ? "" : ", ", x.name);
-    if (x.name == "q") trig_arguments += fmt::format(", {}", dialect.trig_argument());
-  }
-  for (const ArraySpec& y : spec.outputs) trig_arguments += fmt::format(", {}", y.name);
-  for (std::size_t k = 0; k < spec.inputs.size(); ++k)
-    arguments += fmt::format("{}x[{}].data()", k == 0 ? "" : ", ", k);
-  for (std::size_t k = 0; k < spec.outputs.size(); ++k)
-    arguments += fmt::format(", y[{}].data()", k);
-  return {arguments, trig_arguments};
-}
+/// The package's backends, its language first, with what they share.
+struct Package {
+  explicit Package(const GenerateOptions& options)
+      : backends(package_backends(options)), dialect(*backends.front()->dialect()) {}
 
-/// Function f of the package's code: its declaration, its definition (and f_trig's), and its
-/// case in the check.
-void add_function(FunctionTexts& text, const PackageContext& p, const AlgorithmSpec<double>& spec,
-                  const EmittedCode& code, const OpCounts& generated) {
-  const Dialect& dialect = p.dialect;
-  const std::string a(spec.name), summary(spec.summary);
-  const auto [arguments, trig_arguments] = call_arguments(spec, dialect);
-  const std::string call = declaration(dialect.external(a),
-                                       parameters(spec, p.scalar, false, dialect), dialect),
-                    trig_call = declaration(dialect.external(a + "_trig"),
-                                            parameters(spec, p.scalar, true, dialect), dialect);
-  text.declarations += fill("function.hpp.in", {{"summary", summary},
-                                                {"declaration", call},
-                                                {"trig_declaration", trig_call}}) +
-                       "\n";
-  if (!code.helpers.empty()) text.definitions += "\n" + code.helpers;
-  text.definitions +=
-      fill("function.cpp.in",
-           {{"trig_name", dialect.external(a + "_trig")},
-            {"trig_type", dialect.external("JointTrig")},
-            {"joint_trig", dialect.external("joint_trig")},
-            {"summary", summary},
-            {"declaration", call},
-            {"trig_declaration", trig_call},
-            {"trig_arguments", trig_arguments},
-            {"trig_fill", emit_trig_fill(p.model, p.single, code.angles, dialect)},
-            {"counts", to_string(generated)},
-            {"body", code.body}});
-  text.cases += fill("function_check.cpp.in",
-                     {{"name", a},
-                      {"namespace", p.ns},
-                      {"call", dialect.qualified(a)},
-                      {"arguments", arguments}});
-}
+  std::vector<std::unique_ptr<Backend>> backends;
+  const Dialect& dialect;  // the language's
+  std::string cases;       // the check's, function by function and backend by backend
+  bool calls_kernels = false;
+};
 
-/// f_batch and f_many of the package's batches, their Python function and their check case: the
-/// same program printed over lanes, and the function over any count of states. A batch runs its
-/// states in the lanes, so only the kernel calls that keep the code small stay.
+/// Algorithm a's program given to every backend, and its counts for the banner.
 template <class T>
-void add_batch_function(FunctionTexts& text, const PackageContext& p,
-                        const AlgorithmSpec<double>& spec, const Program<T>& program) {
-  const Dialect& dialect = p.batch_dialect;
-  const std::string a(spec.name), summary(spec.summary);
-  std::optional<Program<T>> inlined;
-  if (std::any_of(program.graph.calls.begin(), program.graph.calls.end(),
-                  [](const KernelRecord& call) { return call.for_lanes; }))
-    inlined = trace<T>(a, p.model, true, default_call_kernels_from, false);
-  const Program<T>& batch_program = inlined ? *inlined : program;
-  const EmittedCode lanes = emit_code(batch_program, p.model, p.options.structure, dialect);
-  const auto [arguments, trig_arguments] = call_arguments(spec, p.dialect);
-  const std::string batch_call = declaration(
-                        a + "_batch", parameters(spec, p.scalar, false, dialect), dialect),
-                    batch_trig_call = declaration(
-                        a + "_batch_trig", parameters(spec, p.scalar, true, dialect), dialect),
-                    many_call = declaration(a + "_many", many_parameters(spec, p.scalar), dialect);
-  text.batch_declarations += fill("batch_function.hpp.in",
-                                  {{"summary", summary},
-                                   {"lanes", std::to_string(p.options.batch)},
-                                   {"batch_declaration", batch_call},
-                                   {"trig_declaration", batch_trig_call},
-                                   {"many_declaration", many_call}}) +
-                             "\n";
-  if (!lanes.helpers.empty()) text.batch_definitions += "\n" + lanes.helpers;
-  text.batch_definitions +=
-      fill("function.cpp.in",
-           {{"trig_name", a + "_batch_trig"},
-            {"trig_type", "JointTrigBatch"},
-            {"joint_trig", "joint_trig_batch"},
-            {"summary", summary + " (a batch)"},
-            {"declaration", batch_call},
-            {"trig_declaration", batch_trig_call},
-            {"trig_arguments", trig_arguments},
-            {"trig_fill", emit_trig_fill(p.model, p.single, lanes.angles, dialect)},
-            {"counts", to_string(count_ops(batch_program)) + " per lane"},
-            {"body", lanes.body}});
-  std::map<std::string, std::string> many = many_values(spec, p.scalar, dialect);
-  many.insert({{"summary", summary}, {"declaration", many_call}, {"batch", a + "_batch"}});
-  text.batch_definitions += fill("many.cpp.in", many);
-  if (p.options.python) text.python_functions += python_function(spec, p.ns);
-  text.cases += fill("batch_check.cpp.in", {{"name", a},
-                                            {"namespace", p.ns},
-                                            {"call", "::" + p.ns + "::" + a},
-                                            {"arguments", arguments}});
-}
-
-/// "    \"shoulder_pan_joint\",\n..." : the velocity names as initialiser lines.
-std::string joint_name_lines(const Model<double>& model) {
-  std::string joint_names;
-  const std::vector<std::string> names = velocity_names(model);
-  for (std::size_t k = 0; k < names.size(); ++k)
-    joint_names +=
-        fmt::format("    {},{}", string_literal(names[k]), k + 1 < names.size() ? "\n" : "");
-  return joint_names;
-}
-
-/// The header's lines on how q and v hold each free joint.
-std::vector<std::string> free_joint_lines(const Model<double>& model) {
-  std::vector<std::string> free_joints;
-  for (int i = 0; i < model.nbodies; ++i)
-    if (model.joint_type[i] == JointType::Free) {
-      free_joints.push_back(fmt::format(
-          "free joint '{}': q[{}..{}] = position of the body in its parent's frame, then",
-          safe_text(model.joint_name[i]), model.q_index[i], model.q_index[i] + 6));
-      free_joints.push_back(fmt::format(
-          "its unit quaternion w, x, y, z; v[{}..{}] = linear, then angular velocity in the",
-          model.v_index[i], model.v_index[i] + 5));
-      free_joints.push_back("body's own frame (tau alike: force, then moment)");
-    }
-  return free_joints;
-}
-
-/// The header's words on the code's structure.
-std::string structure_words(Structure structure, const std::vector<FunctionCounts>& counts) {
-  const bool lanes = std::any_of(counts.begin(), counts.end(),
-                                 [](const FunctionCounts& c) { return c.lane_blocks > 0; });
-  const std::string in_lanes =
-      lanes ? std::string("repeated limbs computed in lanes of GCC's and clang's vector types") +
-                  (structure == Structure::Auto ? ", other " : "")
-            : std::string();
-  if (structure == Structure::Shared)
-    return in_lanes + "repeated link sections call shared functions";
-  if (structure == Structure::Auto)
-    return in_lanes + "big functions' repeated link sections call shared functions";
-  return lanes ? in_lanes : "every link section in place";
-}
-
-/// The header and source of the package's code, C or C++.
-void add_code_files(std::vector<GeneratedFile>& files, const PackageContext& p,
-                    const FunctionTexts& text, const std::vector<FunctionCounts>& counts,
-                    const std::string& code_banner) {
-  const Dialect& dialect = p.dialect;
-  const Vec3<double>& g = p.model.gravity;
-  std::map<std::string, std::string> header{
-      {"banner", code_banner},
-      {"robot", safe_text(p.robot.name)},
-      {"scalar", p.scalar},
-      {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
-      {"structure", structure_words(p.options.structure, counts)},
-      {"gravity", fmt::format("({}, {}, {}) m/s^2", g.x, g.y, g.z)},
-      {"nq", std::to_string(p.model.nq)},
-      {"nv", std::to_string(p.model.nv)},
-      {"arrays", array_docs(p.options.algorithms, free_joint_lines(p.model), dialect)},
-      {"frames", frame_declarations(p.model, dialect)},
-      {"declarations", text.declarations}};
-  const std::string joint_trig = emit_joint_trig(p.model, p.single, dialect);
-  if (dialect.c()) {
-    header.insert({{"name", p.ns}, {"NAME", upper(p.ns)}});
-    files.push_back({p.header, fill("dynamics.h.in", header)});
-    files.push_back({p.source, fill("dynamics.c.in",
-                                    {{"banner", code_banner},
-                                     {"name", p.ns},
-                                     {"NAME", upper(p.ns)},
-                                     {"scalar", p.scalar},
-                                     {"joint_names", joint_name_lines(p.model)},
-                                     {"frame_names", frame_names_definition(p.model, dialect)},
-                                     {"joint_trig", joint_trig},
-                                     {"definitions", text.definitions}})});
-    return;
+FunctionCounts add_function(Package& package, const PackageContext& p, const Algorithm& a,
+                            const Program<T>& program, const OpCounts& runtime) {
+  const OpCounts generated = count_ops(program);
+  package.calls_kernels = package.calls_kernels || !program.graph.calls.empty();
+  const EmittedCode code = emit_code(program, p.model, p.options.structure, package.dialect);
+  const auto print = [&](const Dialect& d, bool vector_kernels) {
+    if (vector_kernels || std::none_of(program.graph.calls.begin(), program.graph.calls.end(),
+                                       [](const KernelRecord& call) { return call.for_lanes; }))
+      return std::pair{emit_code(program, p.model, p.options.structure, d), generated};
+    const Program<T> inlined = trace<T>(a, p.model, true, default_call_kernels_from, false);
+    return std::pair{emit_code(inlined, p.model, p.options.structure, d), count_ops(inlined)};
+  };
+  const TracedFunction f{algorithm_spec(a), generated, code, print};
+  for (const std::unique_ptr<Backend>& backend : package.backends) {
+    backend->add_function(p, f);
+    package.cases += backend->check_case(p, f);
   }
-  header.insert({{"namespace", p.ns}, {"joint_names", joint_name_lines(p.model)}});
-  files.push_back({p.header, fill("dynamics.hpp.in", header)});
-  files.push_back(
-      {p.source,
-       fill("dynamics.cpp.in",
-            {{"banner", code_banner},
-             {"name", p.ns},
-             {"namespace", p.ns},
-             {"scalar", p.scalar},
-             {"joint_trig", joint_trig},
-             {"kernels_include", text.calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
-             {"definitions", text.definitions}})});
-}
-
-/// The batches' header and source, and the Python module over them.
-void add_batch_files(std::vector<GeneratedFile>& files, const PackageContext& p,
-                     const FunctionTexts& text, const std::string& code_banner) {
-  if (p.batch_dialect.batch()) {
-    const std::map<std::string, std::string> values{{"banner", code_banner},
-                                                    {"name", p.ns},
-                                                    {"namespace", p.ns},
-                                                    {"scalar", p.scalar},
-                                                    {"lanes", std::to_string(p.options.batch)}};
-    std::map<std::string, std::string> h = values, cpp = values;
-    h.insert({{"robot", safe_text(p.robot.name)},
-              {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
-              {"declarations", text.batch_declarations}});
-    cpp.insert({{"joint_trig", emit_joint_trig(p.model, p.single, p.batch_dialect)},
-                {"kernels_include", text.calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
-                {"definitions", text.batch_definitions}});
-    files.push_back({p.ns + "_batch.hpp", fill("batch.hpp.in", h)});
-    files.push_back({p.ns + "_batch.cpp", fill("batch.cpp.in", cpp)});
-  }
-  if (p.options.python)
-    files.push_back({p.ns + "_python.cpp",
-                     fill("python.cpp.in", {{"banner", code_banner},
-                                            {"name", p.ns},
-                                            {"namespace", p.ns},
-                                            {"robot", python_literal(p.robot.name)},
-                                            {"scalar", p.scalar},
-                                            {"dtype", p.single ? "float32" : "float64"},
-                                            {"lanes", std::to_string(p.options.batch)},
-                                            {"attributes", python_attributes(p.model)},
-                                            {"functions", text.python_functions}})});
+  return {a,
+          generated,
+          runtime,
+          code.sections,
+          code.shared_sections,
+          code.shared_functions,
+          code.lane_blocks,
+          code.lane_operations};
 }
 
 /// The model the check rebuilds the runtime from, and the check.
 template <class T>
 void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
-                     const FunctionTexts& text, const std::string& code_banner) {
-  const Dialect& dialect = p.dialect;
+                     const Package& package, const std::string& code_banner) {
+  const Dialect& dialect = package.dialect;
   const Vec3<double>& g = p.model.gravity;
   files.push_back(
       {p.ns + "_model.hpp",
@@ -801,54 +355,53 @@ void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
              {"frame_records", frame_records(p.model)},
              {"frames_argument", p.model.frames.empty() ? "" : ", model_frames"},
              {"gravity", fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z))}})});
-  files.push_back(
-      {p.ns + "_check.cpp",
-       fill("check.cpp.in",
-            {{"banner", code_banner},
-             {"header", p.header},
-             {"batch_include",
-              p.batch_dialect.batch() ? fmt::format("#include \"{}_batch.hpp\"\n", p.ns) : ""},
-             {"name", p.ns},
-             {"namespace", p.ns},
-             {"nq", dialect.size_outside("nq")},
-             {"nv", dialect.size_outside("nv")},
-             {"joint_names", dialect.qualified("joint_names")},
-             {"scalar", p.scalar},
-             {"random_states", "10000"},
-             {"extreme_states", "2000"},
-             {"cases", text.cases}})});
+  std::string includes;
+  for (const std::unique_ptr<Backend>& backend : package.backends)
+    includes += backend->check_include(p);
+  files.push_back({p.ns + "_check.cpp", fill("check.cpp.in", {{"banner", code_banner},
+                                                              {"header", dialect.header()},
+                                                              {"backend_includes", includes},
+                                                              {"name", p.ns},
+                                                              {"namespace", p.ns},
+                                                              {"nq", dialect.size_outside("nq")},
+                                                              {"nv", dialect.size_outside("nv")},
+                                                              {"joint_names",
+                                                               dialect.qualified("joint_names")},
+                                                              {"scalar", p.scalar},
+                                                              {"random_states", "10000"},
+                                                              {"extreme_states", "2000"},
+                                                              {"cases", package.cases}})});
 }
 
-/// The package's CMakeLists.txt: the library in its language, the batches, the Python module
-/// and the check.
-GeneratedFile cmake_file(const PackageContext& p, const std::string& banner) {
-  std::map<std::string, std::string> values = p.dialect.cmake_language();
-  values.insert(
-      {{"banner", commented(banner, "#")},
-       {"name", p.ns},
-       {"NAME", upper(p.ns)},
-       {"batch_source", p.batch_dialect.batch() ? fmt::format(" {}_batch.cpp", p.ns) : ""},
-       {"python_module", p.options.python ? fill("python_module.cmake.in",
-                                                 {{"name", p.ns}, {"NAME", upper(p.ns)}})
-                                          : ""}});
+/// The package's CMakeLists.txt: the library from the backends' sources, their targets and the
+/// check.
+GeneratedFile cmake_file(const PackageContext& p, const Package& package,
+                         const std::string& banner) {
+  std::map<std::string, std::string> values{{"banner", commented(banner, "#")},
+                                            {"name", p.ns},
+                                            {"NAME", upper(p.ns)},
+                                            {"sources", ""},
+                                            {"targets", ""}};
+  for (const std::unique_ptr<Backend>& backend : package.backends)
+    backend->add_cmake_values(values, p);
   return {"CMakeLists.txt", fill("CMakeLists.txt.in", values)};
 }
 
 /// The package's files under a banner.
 template <class T>
-std::vector<GeneratedFile> package_files(const PackageContext& p, const FunctionTexts& text,
+std::vector<GeneratedFile> package_files(const PackageContext& p, const Package& package,
                                          const std::vector<FunctionCounts>& counts,
                                          const std::string& banner) {
   std::vector<GeneratedFile> files;
-  const std::string code_banner = commented(banner, "//");
-  add_code_files(files, p, text, counts, code_banner);
-  add_batch_files(files, p, text, code_banner);
+  const PackageSummary summary{counts, commented(banner, "//"), package.calls_kernels};
+  for (const std::unique_ptr<Backend>& backend : package.backends)
+    backend->add_files(files, p, summary);
   // the runtime's own header, verbatim: both sides compute sin and cos with the same code
   files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
-  if (text.calls_kernels)
+  if (package.calls_kernels)
     files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
-  add_check_files<T>(files, p, text, code_banner);
-  files.push_back(cmake_file(p, banner));
+  add_check_files<T>(files, p, package, summary.code_banner);
+  files.push_back(cmake_file(p, package, banner));
   return files;
 }
 
@@ -875,8 +428,8 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   if (std::none_of(options.algorithms.begin(), options.algorithms.end(), uses_frames))
     model.frames.clear();
   const bool single = std::is_same_v<T, float>;
-  const PackageContext p(robot, model, options, single);
-  const Dialect& dialect = p.dialect;
+  const PackageContext p(robot, model, options);
+  Package package(options);
 
   Generated result;
   result.nframes = static_cast<int>(model.frames.size());
@@ -888,27 +441,16 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
   result.conditioning =
       numerics::estimate_conditioning(model, options.conditioning_samples, 1, with_aba);
   result.warnings = precision_warnings_for<T>(result.conditioning, with_aba, options.target);
-  FunctionTexts text;
   std::vector<AlgorithmRange> ranges;
   for (const Algorithm& a : options.algorithms) {
     step(fmt::format("tracing {} ({})", a, p.scalar));
     // the runtime's count first, so that its unsimplified trace is gone before the other's
     const OpCounts runtime = count_ops(trace<T>(a, model, false), false);
-    const Program<T> program = traced_program<T>(p, a);
+    const Program<T> program = traced_program<T>(p, package.dialect, a);
     step(fmt::format("estimating the range of {}'s values", a));
     ranges.push_back(check_range(robot, model, program, result.warnings));
-    const OpCounts generated = count_ops(program);
-    text.calls_kernels = text.calls_kernels || !program.graph.calls.empty();
-    const EmittedCode code = emit_code(program, model, options.structure, dialect);
-    result.counts.push_back({a, generated, runtime, code.sections, code.shared_sections,
-                             code.shared_functions, code.lane_blocks, code.lane_operations});
-    add_function(text, p, algorithm_spec(a), code, generated);
-    if (!p.batch_dialect.batch()) continue;
-    step(fmt::format("printing {} for batches of {}", a, options.batch));
-    add_batch_function(text, p, algorithm_spec(a), program);
+    result.counts.push_back(add_function(package, p, a, program, runtime));
   }
-  if (!text.declarations.empty()) text.declarations.pop_back();
-  if (!text.batch_declarations.empty()) text.batch_declarations.pop_back();
   const bool aba_overflows = std::any_of(ranges.begin(), ranges.end(), [](const AlgorithmRange& r) {
     return !r.extreme_overflow.empty() && algorithm_spec(r.algorithm).divides_by_pivots;
   });
@@ -921,11 +463,11 @@ Generated generate_as(const Robot& robot, const GenerateOptions& options) {
     step("compiling the code to measure its size and stack");
     const Toolchain tools = toolchain(target_names[static_cast<int>(options.target)]);
     result.footprint =
-        measure_footprint(package_files<T>(p, text, result.counts, banner), p.source,
-                          options.algorithms, dialect.prefix(), tools);
+        measure_footprint(package_files<T>(p, package, result.counts, banner), package.dialect,
+                          options.algorithms, tools);
     banner.append("\n").append(footprint_text(*result.footprint));  // GCC 12 -Wrestrict misfires on "\n" + s
   }
-  result.files = package_files<T>(p, text, result.counts, banner);
+  result.files = package_files<T>(p, package, result.counts, banner);
   return result;
 }
 

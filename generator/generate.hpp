@@ -31,7 +31,7 @@ inline bool target_single_precision(Target t) {
 
 struct GenerateOptions {
   std::string name;                     // file prefix and C++ namespace or C name prefix
-  Language language = Language::Cpp;
+  std::string language = "c++";        // --lang: a language of the backend registry (backend.cpp)
   std::vector<Algorithm> algorithms = default_algorithm_names();
   bool single_precision = false;        // float instead of double
   Structure structure = Structure::Auto;

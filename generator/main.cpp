@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "backend.hpp"
 #include "eval.hpp"
 #include "firmware_report.hpp"
 #include "generate.hpp"
@@ -374,10 +375,8 @@ struct CodeFlags {
                    "file prefix, C++ namespace or C name prefix, and CMake target and option "
                    "prefix (default: the robot's name made an identifier that no header the "
                    "package includes defines: README, \"Names\")");
-    app.add_option("--lang", lang,
-                   "language of the code: c++ (C++17, in a namespace) or c (C99, every name "
-                   "prefixed, a header usable from C and C++); the same functions and bits")
-        ->check(CLI::IsMember({"c++", "c"}))
+    app.add_option("--lang", lang, language_help())
+        ->check(CLI::IsMember(language_names()))
         ->capture_default_str();
     app.add_option("--structure", structure,
                    fmt::format("shared: each section of {} operations or more (one link's work "
@@ -426,13 +425,15 @@ struct CodeFlags {
 
   /// Checks --name and --batch before the robot is read (so that a mistake costs no time).
   void check_options() const {
-    if (structure == "lanes" && lang == "c")
-      throw InputError("--structure lanes: vector lanes are C++ (GCC's and clang's vector "
-                       "types); with --lang c choose auto, shared or unrolled");
-    if ((batch > 0 || python) && lang == "c")
-      throw InputError(fmt::format("{}: batch functions are C++ (GCC's and clang's vector types); "
-                                   "generate them with --lang c++",
-                                   batch > 0 ? "--batch" : "--python"));
+    GenerateOptions backends;
+    backends.language = lang;
+    backends.batch = batch;
+    backends.python = python;
+    const std::vector<std::unique_ptr<Backend>> package = package_backends(backends);
+    if (structure == "lanes" && !package.front()->dialect()->lane_blocks())
+      throw InputError(fmt::format("--structure lanes: vector lanes are C++ (GCC's and clang's "
+                                   "vector types); with --lang {} choose auto, shared or unrolled",
+                                   lang));
     if (!name.empty() && !is_identifier(name))
       throw InputError(fmt::format(
           "--name {}: not usable as a C++ namespace, C prefix and file prefix (it must be "
@@ -449,7 +450,7 @@ struct CodeFlags {
     options.algorithms = with_jacobian_frame(parse_algorithms(algorithms, algorithm_names()),
                                              jacobian_frame, algorithm_names());
     options.single_precision = scalar == "float";
-    options.language = lang == "c" ? Language::C : Language::Cpp;
+    options.language = lang;
     options.target = static_cast<Target>(
         std::find(std::begin(target_names), std::end(target_names), target) -
         std::begin(target_names));

@@ -22,7 +22,7 @@ namespace {
 
 using namespace dyngen::gen;
 
-Generated measured(Language language) {
+Generated measured(const std::string& language) {
   const Robot robot = load_robot(DYNGEN_TEST_MODELS "/ur5.urdf", LoadOptions{});
   GenerateOptions options;
   options.name = "ur5";
@@ -32,7 +32,7 @@ Generated measured(Language language) {
 }
 
 TEST(Footprint, RecordsEveryFunctionOfCppAndC) {
-  for (const Language language : {Language::Cpp, Language::C}) {
+  for (const std::string language : {"c++", "c"}) {
     const Generated g = measured(language);
     ASSERT_TRUE(g.footprint.has_value());
     ASSERT_EQ(g.footprint->functions.size(), 3u);
@@ -78,7 +78,7 @@ class ScopedCxx {
 
 /// The footprint of a one-line C++ source with the host's toolchain: quicker than a package.
 Footprint measured_line() {
-  return measure_footprint({{"line.cpp", "int f() { return 1; }\n"}}, "line.cpp", {}, "",
+  return measure_footprint({{"line_dynamics.cpp", "int f() { return 1; }\n"}}, Dialect("line"), {},
                            toolchain("host"));
 }
 

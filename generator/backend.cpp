@@ -1,0 +1,270 @@
+#include "backend.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include <fmt/format.h>
+
+#include "names.hpp"
+#include "template.hpp"
+
+namespace dyngen::gen {
+
+// Each backend's file defines its make function.
+std::unique_ptr<Backend> make_cpp_backend(const GenerateOptions& options);
+std::unique_ptr<Backend> make_c_backend(const GenerateOptions& options);
+std::unique_ptr<Backend> make_batch_backend(const GenerateOptions& options);
+std::unique_ptr<Backend> make_python_backend(const GenerateOptions& options);
+
+const std::vector<BackendEntry>& backend_registry() {
+  static const std::vector<BackendEntry> registry{
+      {"c++", nullptr, make_cpp_backend, "c++ (C++17, in a namespace)"},
+      {"c", nullptr, make_c_backend, "c (C99, every name prefixed, a header usable from C and C++)"},
+      {"batch", [](const GenerateOptions& o) { return o.batch > 0; }, make_batch_backend, ""},
+      {"python", [](const GenerateOptions& o) { return o.python; }, make_python_backend, ""},
+  };
+  return registry;
+}
+
+std::vector<std::string> language_names() {
+  std::vector<std::string> names;
+  for (const BackendEntry& b : backend_registry())
+    if (!b.added) names.emplace_back(b.name);
+  return names;
+}
+
+std::string language_help() {
+  std::vector<std::string> languages;
+  for (const BackendEntry& b : backend_registry())
+    if (!b.added) languages.emplace_back(b.help);
+  std::string text = "language of the code: ";
+  for (std::size_t k = 0; k < languages.size(); ++k)
+    text += (k == 0 ? "" : k + 1 < languages.size() ? ", " : " or ") + languages[k];
+  return text + "; the same functions and bits";
+}
+
+std::vector<std::unique_ptr<Backend>> package_backends(const GenerateOptions& options) {
+  std::vector<std::unique_ptr<Backend>> backends;
+  for (const BackendEntry& b : backend_registry())
+    if (!b.added && options.language == b.name) backends.push_back(b.make(options));
+  if (backends.empty())
+    throw InputError(fmt::format("no language '{}': dyngen prints {}",
+                                 safe_text(options.language), fmt::join(language_names(), ", ")));
+  for (const BackendEntry& b : backend_registry())
+    if (b.added && b.added(options)) backends.push_back(b.make(options));
+  return backends;
+}
+
+std::unique_ptr<Backend> language_backend(const std::string& language, const std::string& name) {
+  GenerateOptions options;
+  options.name = name;
+  options.language = language;
+  return std::move(package_backends(options).front());
+}
+
+std::string upper(std::string s) {
+  for (char& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+std::string extent_in(const Extent& e, const Dialect& dialect) {
+  return extent_text(e, dialect.size("nq"), dialect.size("nv"), dialect.size("nframes"));
+}
+
+std::string declaration(const std::string& name, const std::vector<std::string>& parameters,
+                        const Dialect& dialect) {
+  const std::string head = fmt::format("void {}(", name);
+  const std::size_t indent = head.size();
+  std::string text = head;
+  std::size_t column = indent;
+  for (std::size_t k = 0; k < parameters.size(); ++k) {
+    const std::string item =
+        k + 1 < parameters.size() ? parameters[k] + ", " : parameters[k] + ")" + dialect.no_throw();
+    if (column + item.size() > 100 && column > indent) {
+      while (text.back() == ' ') text.pop_back();
+      text += fmt::format("\n{:{}}", "", indent);
+      column = indent;
+    }
+    text += item;
+    column += item.size();
+  }
+  return text;
+}
+
+std::vector<std::string> parameters(const AlgorithmSpec<double>& spec, const std::string& scalar,
+                                    bool trig, const Dialect& dialect) {
+  const std::string lanes = dialect.lanes() > 0 ? " * lanes" : "";
+  std::vector<std::string> out;
+  for (const ArraySpec& a : spec.inputs) {
+    out.push_back(
+        fmt::format("const {} {}[{}{}]", scalar, a.name, extent_in(a.extent, dialect), lanes));
+    if (trig && a.name == "q") out.push_back(dialect.trig_parameter());
+  }
+  for (const ArraySpec& a : spec.outputs)
+    out.push_back(fmt::format("{} {}[{}{}]", scalar, a.name, extent_in(a.extent, dialect), lanes));
+  return out;
+}
+
+std::pair<std::string, std::string> call_arguments(const AlgorithmSpec<double>& spec,
+                                                   const Dialect& dialect) {
+  std::string trig_arguments, arguments;
+  for (const ArraySpec& x : spec.inputs) {
+    trig_arguments += fmt::format("{}{}", trig_arguments.empty() ? "" : ", ", x.name);
+    if (x.name == "q") trig_arguments += fmt::format(", {}", dialect.trig_argument());
+  }
+  for (const ArraySpec& y : spec.outputs) trig_arguments += fmt::format(", {}", y.name);
+  for (std::size_t k = 0; k < spec.inputs.size(); ++k)
+    arguments += fmt::format("{}x[{}].data()", k == 0 ? "" : ", ", k);
+  for (std::size_t k = 0; k < spec.outputs.size(); ++k)
+    arguments += fmt::format(", y[{}].data()", k);
+  return {arguments, trig_arguments};
+}
+
+std::string function_definitions(const PackageContext& p, const Dialect& dialect,
+                                 const AlgorithmSpec<double>& spec, const EmittedCode& code,
+                                 const std::string& summary, const std::string& counts) {
+  const std::string a(spec.name);
+  const std::string trig_arguments = call_arguments(spec, dialect).second;
+  std::string text = code.helpers.empty() ? "" : "\n" + code.helpers;
+  return text + fill("function.cpp.in",
+                     {{"trig_name", dialect.function(a) + "_trig"},
+                      {"trig_type", dialect.trig_type()},
+                      {"joint_trig", dialect.joint_trig()},
+                      {"summary", summary},
+                      {"declaration", declaration(dialect.function(a),
+                                                  parameters(spec, p.scalar, false, dialect),
+                                                  dialect)},
+                      {"trig_declaration", declaration(dialect.function(a) + "_trig",
+                                                       parameters(spec, p.scalar, true, dialect),
+                                                       dialect)},
+                      {"trig_arguments", trig_arguments},
+                      {"trig_fill", emit_trig_fill(p.model, p.single, code.angles, dialect)},
+                      {"counts", counts},
+                      {"body", code.body}});
+}
+
+void add_language_function(LanguageTexts& texts, const PackageContext& p, const Dialect& dialect,
+                           const TracedFunction& f) {
+  const std::string a(f.spec.name), summary(f.spec.summary);
+  texts.declarations +=
+      fill("function.hpp.in",
+           {{"summary", summary},
+            {"declaration",
+             declaration(dialect.function(a), parameters(f.spec, p.scalar, false, dialect),
+                         dialect)},
+            {"trig_declaration", declaration(dialect.function(a) + "_trig",
+                                             parameters(f.spec, p.scalar, true, dialect),
+                                             dialect)}}) +
+      "\n";
+  texts.definitions +=
+      function_definitions(p, dialect, f.spec, f.code, summary, to_string(f.generated));
+}
+
+std::string language_check_case(const PackageContext& p, const Dialect& dialect,
+                                const AlgorithmSpec<double>& spec) {
+  const std::string a(spec.name);
+  return fill("function_check.cpp.in", {{"name", a},
+                                        {"namespace", p.ns},
+                                        {"call", dialect.qualified(a)},
+                                        {"arguments", call_arguments(spec, dialect).first}});
+}
+
+std::string joint_name_lines(const Model<double>& model) {
+  std::string joint_names;
+  const std::vector<std::string> names = velocity_names(model);
+  for (std::size_t k = 0; k < names.size(); ++k)
+    joint_names +=
+        fmt::format("    {},{}", string_literal(names[k]), k + 1 < names.size() ? "\n" : "");
+  return joint_names;
+}
+
+std::string frame_name_lines(const Model<double>& model) {
+  std::string names;
+  for (const Frame<double>& f : model.frames)
+    names += fmt::format("    {},\n", string_literal(f.name));
+  return names;
+}
+
+namespace {
+
+/// The header's lines on how q and v hold each free joint.
+std::vector<std::string> free_joint_lines(const Model<double>& model) {
+  std::vector<std::string> free_joints;
+  for (int i = 0; i < model.nbodies; ++i)
+    if (model.joint_type[i] == JointType::Free) {
+      free_joints.push_back(fmt::format(
+          "free joint '{}': q[{}..{}] = position of the body in its parent's frame, then",
+          safe_text(model.joint_name[i]), model.q_index[i], model.q_index[i] + 6));
+      free_joints.push_back(fmt::format(
+          "its unit quaternion w, x, y, z; v[{}..{}] = linear, then angular velocity in the",
+          model.v_index[i], model.v_index[i] + 5));
+      free_joints.push_back("body's own frame (tau alike: force, then moment)");
+    }
+  return free_joints;
+}
+
+/// The header's list of the arrays that the requested functions take, each once, and how q holds
+/// the free joints' positions (`free_joints`: lines to add to q's).
+std::string array_docs(const std::vector<Algorithm>& algorithms,
+                       const std::vector<std::string>& free_joints, const Dialect& dialect) {
+  std::vector<std::pair<std::string, const ArraySpec*>> entries;
+  std::size_t width = 0;
+  for (const Algorithm& name : algorithms) {
+    const AlgorithmSpec<double>& spec = algorithm_spec(name);
+    for (const auto* list : {&spec.inputs, &spec.outputs})
+      for (const ArraySpec& a : *list) {
+        if (std::any_of(entries.begin(), entries.end(),
+                        [&](const auto& e) { return e.second->name == a.name; }))
+          continue;
+        entries.emplace_back(fmt::format("{}[{}]", a.name, extent_in(a.extent, dialect)), &a);
+        width = std::max(width, entries.back().first.size() + 2);
+      }
+  }
+  std::string text;
+  for (const auto& [array, a] : entries) {
+    text += fmt::format("///   {:<{}}{}\n", array, width, a->meaning);
+    if (a->name == "q")
+      for (const std::string& line : free_joints)
+        text += fmt::format("///   {:<{}}{}\n", "", width, line);
+  }
+  if (!text.empty()) text.pop_back();
+  return text;
+}
+
+/// The header's words on the code's structure.
+std::string structure_words(Structure structure, const std::vector<FunctionCounts>& counts) {
+  const bool lanes = std::any_of(counts.begin(), counts.end(),
+                                 [](const FunctionCounts& c) { return c.lane_blocks > 0; });
+  const std::string in_lanes =
+      lanes ? std::string("repeated limbs computed in lanes of GCC's and clang's vector types") +
+                  (structure == Structure::Auto ? ", other " : "")
+            : std::string();
+  if (structure == Structure::Shared)
+    return in_lanes + "repeated link sections call shared functions";
+  if (structure == Structure::Auto)
+    return in_lanes + "big functions' repeated link sections call shared functions";
+  return lanes ? in_lanes : "every link section in place";
+}
+
+}  // namespace
+
+std::map<std::string, std::string> header_values(const PackageContext& p, const Dialect& dialect,
+                                                 const PackageSummary& summary,
+                                                 const std::string& frames,
+                                                 const std::string& declarations) {
+  const Vec3<double>& g = p.model.gravity;
+  return {{"banner", summary.code_banner},
+          {"robot", safe_text(p.robot.name)},
+          {"scalar", p.scalar},
+          {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
+          {"structure", structure_words(p.options.structure, summary.counts)},
+          {"gravity", fmt::format("({}, {}, {}) m/s^2", g.x, g.y, g.z)},
+          {"nq", std::to_string(p.model.nq)},
+          {"nv", std::to_string(p.model.nv)},
+          {"arrays", array_docs(p.options.algorithms, free_joint_lines(p.model), dialect)},
+          {"frames", frames},
+          {"declarations", declarations.empty() ? declarations
+                                                : declarations.substr(0, declarations.size() - 1)}};
+}
+
+}  // namespace dyngen::gen

@@ -1,0 +1,75 @@
+// The C++ backend: the package's functions in a namespace (C++17), spelled as Dialect's
+// defaults spell them.
+#include <fmt/format.h>
+
+#include "backend.hpp"
+#include "template.hpp"
+
+namespace dyngen::gen {
+
+namespace {
+
+class CppBackend final : public Backend, public Dialect {
+ public:
+  explicit CppBackend(const GenerateOptions& options) : Dialect(options.name) {}
+
+  const Dialect* dialect() const override { return this; }
+
+  void add_function(const PackageContext& p, const TracedFunction& f) override {
+    add_language_function(texts_, p, *this, f);
+  }
+
+  std::string check_case(const PackageContext& p, const TracedFunction& f) const override {
+    return language_check_case(p, *this, f.spec);
+  }
+
+  void add_files(std::vector<GeneratedFile>& files, const PackageContext& p,
+                 const PackageSummary& summary) const override {
+    std::map<std::string, std::string> header =
+        header_values(p, *this, summary, frame_declarations(p.model), texts_.declarations);
+    header.insert({{"namespace", p.ns}, {"joint_names", joint_name_lines(p.model)}});
+    files.push_back({this->header(), fill("dynamics.hpp.in", header)});
+    files.push_back(
+        {source(), fill("dynamics.cpp.in",
+                        {{"banner", summary.code_banner},
+                         {"name", p.ns},
+                         {"namespace", p.ns},
+                         {"scalar", p.scalar},
+                         {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
+                         {"kernels_include",
+                          summary.calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
+                         {"definitions", texts_.definitions}})});
+  }
+
+  void add_cmake_values(std::map<std::string, std::string>& values,
+                        const PackageContext& /*p*/) const override {
+    values.insert({{"standard", "C++17"},
+                   {"standard_name", "C++"},
+                   {"language", "CXX"},
+                   {"check_flag", "check_cxx_compiler_flag"},
+                   {"feature", "cxx_std_17"},
+                   {"language_flags", " -fno-exceptions -fno-rtti"},
+                   {"enable_check_language", ""}});
+    values["sources"] += source();
+  }
+
+ private:
+  /// The header's frame count and names, or "" without frames.
+  static std::string frame_declarations(const Model<double>& model) {
+    if (model.frames.empty()) return "";
+    return fmt::format(
+        "{}inline constexpr int nframes = {};\ninline constexpr const char* frame_names[nframes] = "
+        "{{\n{}}};\n",
+        frames_comment, model.frames.size(), frame_name_lines(model));
+  }
+
+  LanguageTexts texts_;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_cpp_backend(const GenerateOptions& options) {
+  return std::make_unique<CppBackend>(options);
+}
+
+}  // namespace dyngen::gen
