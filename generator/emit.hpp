@@ -1,5 +1,5 @@
-// Schedules a traced program and prints it as C++ or C: live nodes in creation order (the
-// algorithm's order), one operation per statement, grouped and labelled by body and pass,
+// Schedules a traced program and prints it in a backend's dialect: live nodes in creation order
+// (the algorithm's order), one operation per statement, grouped and labelled by body and pass,
 // either in place or in functions shared by sections of the same shape.
 #pragma once
 
