@@ -31,6 +31,10 @@ std::string to_string(const OpCounts& c);
 template <class T>
 OpCounts count_ops(const Program<T>& program, bool live_only = true);
 
+/// The operations of the nodes marked in counted (by node id).
+template <class T>
+OpCounts count_ops(const Program<T>& program, const std::vector<bool>& counted);
+
 /// count_ops of the live operations, split by the pass that recorded them (a kernel call's
 /// loops count in the call's pass).
 template <class T>
