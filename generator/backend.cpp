@@ -143,30 +143,25 @@ std::string function_definitions(const PackageContext& p, const Dialect& dialect
                       {"body", code.body}});
 }
 
-void add_language_function(LanguageTexts& texts, const PackageContext& p, const Dialect& dialect,
-                           const TracedFunction& f) {
+void LanguageBackend::add_function(const PackageContext& p, const TracedFunction& f) {
   const std::string a(f.spec.name), summary(f.spec.summary);
-  texts.declarations +=
+  declarations_ +=
       fill("function.hpp.in",
            {{"summary", summary},
             {"declaration",
-             declaration(dialect.function(a), parameters(f.spec, p.scalar, false, dialect),
-                         dialect)},
-            {"trig_declaration", declaration(dialect.function(a) + "_trig",
-                                             parameters(f.spec, p.scalar, true, dialect),
-                                             dialect)}}) +
+             declaration(function(a), parameters(f.spec, p.scalar, false, *this), *this)},
+            {"trig_declaration", declaration(function(a) + "_trig",
+                                             parameters(f.spec, p.scalar, true, *this), *this)}}) +
       "\n";
-  texts.definitions +=
-      function_definitions(p, dialect, f.spec, f.code, summary, to_string(f.generated));
+  definitions_ += function_definitions(p, *this, f.spec, f.code, summary, to_string(f.generated));
 }
 
-std::string language_check_case(const PackageContext& p, const Dialect& dialect,
-                                const AlgorithmSpec<double>& spec) {
-  const std::string a(spec.name);
+std::string LanguageBackend::check_case(const PackageContext& p, const TracedFunction& f) const {
+  const std::string a(f.spec.name);
   return fill("function_check.cpp.in", {{"name", a},
                                         {"namespace", p.ns},
-                                        {"call", dialect.qualified(a)},
-                                        {"arguments", call_arguments(spec, dialect).first}});
+                                        {"call", qualified(a)},
+                                        {"arguments", call_arguments(f.spec, *this).first}});
 }
 
 std::string joint_name_lines(const Model<double>& model) {

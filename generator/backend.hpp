@@ -130,16 +130,18 @@ std::string function_definitions(const PackageContext& p, const Dialect& dialect
                                  const AlgorithmSpec<double>& spec, const EmittedCode& code,
                                  const std::string& summary, const std::string& counts);
 
-/// The functions of the package's language (C++ or C): declarations and definitions.
-struct LanguageTexts {
-  std::string declarations, definitions;
-};
-void add_language_function(LanguageTexts& texts, const PackageContext& p, const Dialect& dialect,
-                           const TracedFunction& f);
+/// A language of the package (C++, C): f and f_trig in its header and source
+/// (function.hpp.in, function.cpp.in) and their cases in the check, spelled by its dialect.
+class LanguageBackend : public Backend, public Dialect {
+ public:
+  using Dialect::Dialect;
+  const Dialect* dialect() const override { return this; }
+  void add_function(const PackageContext& p, const TracedFunction& f) override;
+  std::string check_case(const PackageContext& p, const TracedFunction& f) const override;
 
-/// f's case in the check, called in the package's language.
-std::string language_check_case(const PackageContext& p, const Dialect& dialect,
-                                const AlgorithmSpec<double>& spec);
+ protected:
+  std::string declarations_, definitions_;  // of the functions added
+};
 
 /// The header's comment before the frames' count and names.
 inline constexpr const char* frames_comment =

@@ -11,11 +11,9 @@ namespace dyngen::gen {
 
 namespace {
 
-class CBackend final : public Backend, public Dialect {
+class CBackend final : public LanguageBackend {
  public:
-  explicit CBackend(const GenerateOptions& options) : Dialect(options.name) {}
-
-  const Dialect* dialect() const override { return this; }
+  explicit CBackend(const GenerateOptions& options) : LanguageBackend(options.name) {}
 
   // ---- Dialect: names
   std::string external(const std::string& local) const override { return name() + "_" + local; }
@@ -48,18 +46,10 @@ class CBackend final : public Backend, public Dialect {
   std::vector<std::string> language_flags() const override { return {}; }
 
   // ---- Backend
-  void add_function(const PackageContext& p, const TracedFunction& f) override {
-    add_language_function(texts_, p, *this, f);
-  }
-
-  std::string check_case(const PackageContext& p, const TracedFunction& f) const override {
-    return language_check_case(p, *this, f.spec);
-  }
-
   void add_files(std::vector<GeneratedFile>& files, const PackageContext& p,
                  const PackageSummary& summary) const override {
     std::map<std::string, std::string> h =
-        header_values(p, *this, summary, frame_declarations(p.model), texts_.declarations);
+        header_values(p, *this, summary, frame_declarations(p.model), declarations_);
     h.insert({{"name", p.ns}, {"NAME", upper(p.ns)}});
     files.push_back({header(), fill("dynamics.h.in", h)});
     files.push_back({source(), fill("dynamics.c.in",
@@ -70,7 +60,7 @@ class CBackend final : public Backend, public Dialect {
                                      {"joint_names", joint_name_lines(p.model)},
                                      {"frame_names", frame_names_definition(p.model)},
                                      {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
-                                     {"definitions", texts_.definitions}})});
+                                     {"definitions", definitions_}})});
   }
 
   void add_cmake_values(std::map<std::string, std::string>& values,
@@ -101,8 +91,6 @@ class CBackend final : public Backend, public Dialect {
     return fmt::format("\nconst char* const {}[{}] = {{\n{}}};\n", external("frame_names"),
                        size("nframes"), frame_name_lines(model));
   }
-
-  LanguageTexts texts_;
 };
 
 }  // namespace

@@ -9,24 +9,14 @@ namespace dyngen::gen {
 
 namespace {
 
-class CppBackend final : public Backend, public Dialect {
+class CppBackend final : public LanguageBackend {
  public:
-  explicit CppBackend(const GenerateOptions& options) : Dialect(options.name) {}
-
-  const Dialect* dialect() const override { return this; }
-
-  void add_function(const PackageContext& p, const TracedFunction& f) override {
-    add_language_function(texts_, p, *this, f);
-  }
-
-  std::string check_case(const PackageContext& p, const TracedFunction& f) const override {
-    return language_check_case(p, *this, f.spec);
-  }
+  explicit CppBackend(const GenerateOptions& options) : LanguageBackend(options.name) {}
 
   void add_files(std::vector<GeneratedFile>& files, const PackageContext& p,
                  const PackageSummary& summary) const override {
     std::map<std::string, std::string> header =
-        header_values(p, *this, summary, frame_declarations(p.model), texts_.declarations);
+        header_values(p, *this, summary, frame_declarations(p.model), declarations_);
     header.insert({{"namespace", p.ns}, {"joint_names", joint_name_lines(p.model)}});
     files.push_back({this->header(), fill("dynamics.hpp.in", header)});
     files.push_back(
@@ -38,7 +28,7 @@ class CppBackend final : public Backend, public Dialect {
                          {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
                          {"kernels_include",
                           summary.calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
-                         {"definitions", texts_.definitions}})});
+                         {"definitions", definitions_}})});
   }
 
   void add_cmake_values(std::map<std::string, std::string>& values,
@@ -62,8 +52,6 @@ class CppBackend final : public Backend, public Dialect {
         "{{\n{}}};\n",
         frames_comment, model.frames.size(), frame_name_lines(model));
   }
-
-  LanguageTexts texts_;
 };
 
 }  // namespace
