@@ -243,6 +243,35 @@ std::string structure_words(Structure structure, const std::vector<FunctionCount
 
 }  // namespace
 
+/// text as /// comment lines of at most 100 columns, broken at spaces.
+std::string comment_lines(const std::string& text) {
+  std::string out, line;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = std::min(text.find(' ', at), text.size());
+    const std::string word = text.substr(at, end - at);
+    if (!line.empty() && 4 + line.size() + 1 + word.size() > 100) {
+      out += "/// " + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    at = end + 1;
+  }
+  return line.empty() ? out : out + "/// " + line + "\n";
+}
+
+/// The header's line on the rotor inertias built into M, or "" without any.
+std::string armature_words(const Model<double>& model) {
+  if (model.armature.empty()) return "";
+  std::string text;
+  const std::vector<std::string> names = velocity_names(model);
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (model.armature[k] != 0)
+      text += fmt::format("{}{} {}", text.empty() ? "" : ", ", safe_text(names[k]),
+                          model.armature[k]);
+  return comment_lines("Rotor inertias (armature, kg m^2 or kg) are built into M: " + text + ".");
+}
+
 std::map<std::string, std::string> header_values(const PackageContext& p, const Dialect& dialect,
                                                  const PackageSummary& summary,
                                                  const std::string& frames,
@@ -254,6 +283,7 @@ std::map<std::string, std::string> header_values(const PackageContext& p, const 
           {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
           {"structure", structure_words(p.options.structure, summary.counts)},
           {"gravity", fmt::format("({}, {}, {}) m/s^2", g.x, g.y, g.z)},
+          {"armature", armature_words(p.model)},
           {"nq", std::to_string(p.model.nq)},
           {"nv", std::to_string(p.model.nv)},
           {"arrays", array_docs(p.options.algorithms, free_joint_lines(p.model), dialect)},

@@ -150,6 +150,22 @@ std::string model_records(const Model<double>& model) {
   return out;
 }
 
+/// The model's armature by degree of freedom (model.hpp.in), or "" without any.
+std::string armature_records(const Model<double>& model) {
+  if (model.armature.empty()) return "";
+  std::vector<std::string> values;
+  for (const double x : model.armature) values.push_back(literal(x));
+  return fmt::format("\n// the rotor inertia of each degree of freedom, in v's order\ninline "
+                     "constexpr double model_armature[] = {{{}}};\n",
+                     fmt::join(values, ", "));
+}
+
+/// model_from_records' arguments after the bodies and gravity: the frames and the armature.
+std::string record_arguments(const Model<double>& model) {
+  if (model.armature.empty()) return model.frames.empty() ? "" : ", model_frames";
+  return model.frames.empty() ? ", {}, model_armature" : ", model_frames, model_armature";
+}
+
 /// The model's frames as FrameRecords (model.hpp.in), or "" without frames.
 std::string frame_records(const Model<double>& model) {
   if (model.frames.empty()) return "";
@@ -353,7 +369,8 @@ void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
              {"namespace", p.ns},
              {"records", model_records<T>(p.model)},
              {"frame_records", frame_records(p.model)},
-             {"frames_argument", p.model.frames.empty() ? "" : ", model_frames"},
+             {"armature_records", armature_records(p.model)},
+             {"record_arguments", record_arguments(p.model)},
              {"gravity", fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z))}})});
   std::string includes;
   for (const std::unique_ptr<Backend>& backend : package.backends)

@@ -44,6 +44,22 @@ Vec3<double> parse_gravity(const std::string& text) {
   return {g[0], g[1], g[2]};
 }
 
+/// --armature JOINT=VALUE: the joint (up to the last '=', so a name may hold one) and a finite
+/// number.
+std::pair<std::string, double> parse_armature(const std::string& text) {
+  const std::size_t at = text.rfind('=');
+  if (at == std::string::npos || at == 0)
+    throw InputError(fmt::format("--armature {}: expected JOINT=VALUE, or all=VALUE",
+                                 safe_text(text)));
+  const std::string value = text.substr(at + 1);
+  char* end = nullptr;
+  const double x = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(x))
+    throw InputError(fmt::format("--armature {}: '{}' is not a finite number", safe_text(text),
+                                 safe_text(value)));
+  return {text.substr(0, at), x};
+}
+
 /// The suffix of the algorithms that give in a frame's own axes what the algorithm without it
 /// gives in the base's (frame_jacobians_local beside frame_jacobians).
 constexpr std::string_view local_suffix = "_local";
@@ -272,7 +288,7 @@ CLI::Validator link_list() {
 /// The options that choose the model, shared by generation and eval.
 struct ModelFlags {
   std::string gravity;
-  std::vector<std::string> locks, frames;
+  std::vector<std::string> locks, frames, armature;
   bool no_gravity = false, lock_massless = false, floating_base = false, mimic_independent = false;
   std::optional<double> snap;
 
@@ -287,6 +303,11 @@ struct ModelFlags {
     app.add_option("--lock", locks, "turn joint JOINT into a fixed joint at q = 0 (repeatable)")
         ->type_name("JOINT");
     app.add_flag("--lock-massless", lock_massless, "lock every joint whose subtree has no mass");
+    app.add_option("--armature", armature,
+                   "rotor inertia of joint JOINT (kg m^2 about a revolute axis, kg along a "
+                   "prismatic one), added to M's diagonal; JOINT all: every revolute, prismatic "
+                   "and planar joint, before the others given (repeatable)")
+        ->type_name("JOINT=VALUE");
     app.add_flag("--mimic-independent", mimic_independent,
                  "accept URDF mimic joints as independent joints (by default they are refused)");
     // one value, split here: a vector option would take the robot after it as a link too
@@ -312,6 +333,13 @@ struct ModelFlags {
     load.mimic_independent = mimic_independent;
     load.snap = snap;
     load.frames = frames;
+    std::vector<std::pair<std::string, double>> all, named;
+    for (const std::string& text : armature) {
+      const auto entry = parse_armature(text);
+      (entry.first == "all" ? all : named).push_back(entry);
+    }
+    load.armature = all;
+    load.armature.insert(load.armature.end(), named.begin(), named.end());
     if (no_gravity) load.gravity = Vec3<double>{0, 0, 0};
     if (!gravity.empty()) load.gravity = parse_gravity(gravity);
     return load;
@@ -322,6 +350,7 @@ struct ModelFlags {
     std::string out;
     if (floating_base) out += " --floating-base";
     for (const std::string& j : locks) out += " --lock " + j;
+    for (const std::string& a : armature) out += " --armature " + a;
     if (lock_massless) out += " --lock-massless";
     if (mimic_independent) out += " --mimic-independent";
     if (snap) out += fmt::format(" --snap {}", *snap);

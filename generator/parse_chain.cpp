@@ -111,7 +111,7 @@ RobotDescription parse_document(const std::string& path, const std::string& text
     joint.axis = {0, 0, 1};
     if (const YAML::Node j = link["joint"]) {
       const std::string jat = at + ".joint";
-      r.only_keys(j, jat, {"name", "type", "axis", "xyz", "rpy"});
+      r.only_keys(j, jat, {"name", "type", "axis", "xyz", "rpy", "armature"});
       if (j["name"]) joint.name = r.text(j["name"], jat + ".name");
       if (j["type"]) {
         const std::string type = r.text(j["type"], jat + ".type");
@@ -125,6 +125,7 @@ RobotDescription parse_document(const std::string& path, const std::string& text
                              type));
       }
       if (j["axis"]) joint.axis = r.vec3(j["axis"], jat + ".axis");
+      if (j["armature"]) joint.armature = r.number(j["armature"], jat + ".armature");
       if (j["xyz"]) joint.xyz = r.vec3(j["xyz"], jat + ".xyz");
       if (j["rpy"]) {
         const Vec3<double> rpy = r.vec3(j["rpy"], jat + ".rpy");

@@ -111,6 +111,7 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
       }
       double Mii;
       joint_project(model, i, mul(ws.Ic[i], joint_column(model, i, 0)), &Mii);
+      if (!model.armature.empty()) Mii = Mii + model.armature[model.v_index[i]];
       // a NaN D comes from a division by a vanishing D below, which is flagged itself; a D below
       // double's normal range is as good as zero (1 / D overflows)
       if (!std::isnan(ws.D[i]) &&
@@ -148,7 +149,11 @@ void check_mimics(Robot& robot, const std::vector<std::pair<std::string, std::st
 }  // namespace
 
 std::vector<int> joints_blocking_aba(const Model<double>& model) {
+  // a rotor inertia is ABA's pivot where the joint moves no mass
   std::vector<int> joints = joints_with_massless_subtree(model);
+  std::erase_if(joints, [&](int i) {
+    return !model.armature.empty() && model.armature[model.v_index[i]] > 0;
+  });
   for (const int i : joints_moving_no_mass(model))
     if (std::find(joints.begin(), joints.end(), i) == joints.end()) joints.push_back(i);
   std::sort(joints.begin(), joints.end());
@@ -295,6 +300,15 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
                                                      : default_gravity;
   ModelBuilder& builder = description.builder;
   try {
+    for (const auto& [joint, value] : options.armature) {
+      if (joint != "all") {
+        builder.set_armature(joint, value);
+        continue;
+      }
+      for (const JointSpec& j : builder.joints())
+        if (j.kind != JointKind::Fixed && j.kind != JointKind::Floating)
+          builder.set_armature(j.name, value);
+    }
     for (const std::string& joint : options.lock) {
       builder.lock(joint);
       robot.locked.push_back(joint);

@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dyngen/model.hpp"
@@ -45,6 +46,9 @@ struct LoadOptions {
   std::vector<std::string> frames;      // the links whose frames to keep, in this order
                                         // (--frames); none named: default_frames_rule
   bool all_frames = false;              // keep every link's frame
+  /// Rotor inertias (--armature), in the order given: (joint, value), joint "all" for every
+  /// revolute, prismatic and planar joint.
+  std::vector<std::pair<std::string, double>> armature;
 };
 
 struct Robot {
@@ -85,7 +89,8 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model);
 /// Joints whose whole subtree has zero mass and inertia.
 std::vector<int> joints_with_massless_subtree(const Model<double>& model);
 
-/// The joints that make ABA undefined, both kinds above, in body order (empty: ABA is defined).
+/// The joints that make ABA undefined, both kinds above (less the massless ones with an armature,
+/// which is their pivot), in body order (empty: ABA is defined).
 std::vector<int> joints_blocking_aba(const Model<double>& model);
 
 /// 'a', 'b', 'c': the names of the joints.

@@ -194,6 +194,28 @@ TEST_F(ChainSpec, JointTypes) {
   expect_vec(m.joint_axis[2], 0, 0, 1, "a prismatic joint slides along the default axis");
 }
 
+// A joint's armature is its rotor inertia, by degree of freedom; a massless tail joint with one
+// has ABA's pivot, and without one it is refused.
+TEST_F(ChainSpec, ArmatureIsTheJointsRotorInertia) {
+  const Robot robot = load("links:\n"
+                           "  - {mass: 1, length: 1, com: [0.5, 0, 0], joint: {armature: 0.2}}\n"
+                           "  - {mass: 1, length: 1, com: [0.5, 0, 0]}\n"
+                           "  - {mass: 0, length: 1, joint: {type: prismatic, armature: 1.5}}\n");
+  EXPECT_EQ(robot.model.armature, (std::vector<double>{0.2, 0, 1.5}));
+  EXPECT_TRUE(joints_blocking_aba(robot.model).empty());
+  EXPECT_EQ(joint_list(robot.model, joints_blocking_aba(
+                                        load("links:\n"
+                                             "  - {mass: 1, com: [0.5, 0, 0], length: 1}\n"
+                                             "  - {mass: 0, length: 1}\n")
+                                            .model)),
+            "'link2_joint'");
+  EXPECT_NE(error("links:\n  - {mass: 1, joint: {type: fixed, armature: 0.1}}\n"
+                  "  - {mass: 1}\n")
+                .find("joint 'link1_joint' is fixed: only a revolute, prismatic or planar joint "
+                      "has an armature"),
+            std::string::npos);
+}
+
 TEST_F(ChainSpec, FixedJointMergesTheLinkIntoThePreviousBody) {
   const Robot robot = load("links:\n"
                            "  - {name: arm, mass: 1, length: 0.5, com: [0.25, 0, 0]}\n"
@@ -335,7 +357,7 @@ TEST_F(ChainSpec, DocumentationListsEveryKeyTheParserAccepts) {
     std::istringstream list((*m)[1]);
     for (std::string key; std::getline(list, key, ',');) keys.insert(key.substr(key[0] == ' '));
   }
-  EXPECT_EQ(keys.size(), 4u + 6 + 5 + 6 - 2) << "name is a key at three levels";
+  EXPECT_EQ(keys.size(), 4u + 6 + 6 + 6 - 2) << "name is a key at three levels";
   const std::string text = read(doc);
   for (const std::string& key : keys)
     EXPECT_NE(text.find("`" + key + "`"), std::string::npos) << "not documented: " << key;

@@ -52,9 +52,10 @@ TEST(Plan, SectionsAreTheRunsOfOneBodysAndPasssStatements) {
       EXPECT_EQ(program.graph.nodes[id].pass, section.pass);
       in_sections.push_back(id);
     }
-    if (s > 0)
+    if (s > 0) {
       EXPECT_TRUE(plan.sections[s - 1].body != section.body ||
                   plan.sections[s - 1].pass != section.pass);
+    }
   }
   EXPECT_EQ(in_sections, statements);
   EXPECT_GT(plan.sections.size(), static_cast<std::size_t>(2 * robot.model.nbodies));
@@ -121,10 +122,11 @@ TEST(Plan, LaneBlocksHoldTheSameOperationsOfLimbsAtOneDepth) {
   }
   std::multiset<int> emitted, blocks;
   for (const int unit : plan.order) (unit >= 0 ? emitted : blocks).insert(unit);
-  for (std::size_t id = 0; id < plan.is_op.size(); ++id)
-    if (plan.is_op[id])
-      EXPECT_EQ(emitted.count(static_cast<int>(id)), in_blocks.count(static_cast<int>(id)) ? 0u : 1u)
-          << id;
+  for (std::size_t id = 0; id < plan.is_op.size(); ++id) {
+    if (!plan.is_op[id]) continue;
+    const int node = static_cast<int>(id);
+    EXPECT_EQ(emitted.count(node), in_blocks.count(node) ? 0u : 1u) << id;
+  }
   EXPECT_EQ(blocks.size(), plan.blocks.size());
   EXPECT_EQ(std::set<int>(blocks.begin(), blocks.end()).size(), plan.blocks.size());
 }

@@ -148,6 +148,15 @@ std::vector<Case> cases() {
   all.push_back({"all_joints", [] {
                    return gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
                  }, 6});
+  all.push_back({"armature_chain", [] {
+                   return gen::load_robot(test::model_path("coverage/armature_chain.yaml")).model;
+                 }, 9});
+  all.push_back({"ur5_armature_floating", [] {
+                   gen::LoadOptions options;
+                   options.floating_base = true;
+                   options.armature = {{"all", 0.05}, {"elbow_joint", 0.3}};
+                   return gen::load_robot(test::model_path("ur5.urdf"), options).model;
+                 }, 10});
   for (const test::RobotFile& robot : test::robot_files()) {
     all.push_back({robot.name, [=] { return test::load_for_aba(robot); }, 7});
     all.push_back({robot.name + "_floating", [=] { return test::load_for_aba(robot, true); }, 8});
@@ -345,6 +354,38 @@ INSTANTIATE_TEST_SUITE_P(Models, Algorithms, ::testing::ValuesIn(cases()),
                          });
 
 // ---- the runtime in long double as the reference --------------------------------------------
+
+// A rotor inertia (armature) a_k is M's diagonal entry plus a_k, and RNEA's torque plus a_k
+// qdd_k: the model without armature, and the definition, against the model with it.
+TEST(Armature, AddsToMassMatrixDiagonalAndTorques) {
+  for (const bool floating_base : {false, true}) {
+    gen::LoadOptions options;
+    options.floating_base = floating_base;
+    Dynamics<double> bare(gen::load_robot(test::model_path("ur5.urdf"), options).model);
+    options.armature = {{"all", 0.05}, {"elbow_joint", 0.3}};
+    Dynamics<double> geared(gen::load_robot(test::model_path("ur5.urdf"), options).model);
+    const std::vector<double>& armature = geared.model().armature;
+    ASSERT_EQ(armature.size(), static_cast<std::size_t>(geared.nv()));
+    const int first = floating_base ? 6 : 0;  // the free joint has none
+    for (int k = 0; k < geared.nv(); ++k)
+      EXPECT_EQ(armature[k], k < first ? 0 : k == first + 2 ? 0.3 : 0.05) << k;
+    const Vector a = test::to_eigen(armature);
+    test::Random rng(20261128);
+    for (int n = 0; n < 10; ++n) {
+      const test::State s = test::random_state(geared.model(), rng);
+      const Vector q = test::to_eigen(s.q), qd = test::to_eigen(s.qd), qdd = test::to_eigen(s.qdd);
+      const Matrix M = bare.crba(q);
+      const Matrix M_geared = geared.crba(q);
+      EXPECT_LE(max_abs(M_geared - M - Matrix(a.asDiagonal())), 4 * eps * max_abs(M_geared));
+      const Vector tau = geared.rnea(q, qd, qdd);
+      EXPECT_LE(max_abs(tau - bare.rnea(q, qd, qdd) - a.cwiseProduct(qdd)),
+                64 * eps * (max_abs(tau) + max_abs(M_geared) * max_abs(qdd)));
+      // ABA's pivots with armature give the same accelerations as M with it
+      const Vector qdd_dense = M_geared.ldlt().solve(tau - geared.nle(q, qd));
+      EXPECT_LE(max_abs(geared.aba(q, qd, tau) - qdd_dense), 1e-9 * max_abs(qdd_dense));
+    }
+  }
+}
 
 TEST(LongDouble, DoubleAgreesWithinRoundingBounds) {
   static_assert(std::numeric_limits<long double>::digits > std::numeric_limits<double>::digits);

@@ -496,6 +496,23 @@ TEST(ModelBuilder, Errors) {
         b.build(g);
       },
       "joint 'zero' has a zero or non-finite axis");
+  expect_model_error([&] { tree({{"base", "a"}}).set_armature("elbow", 0.1); },
+                     "cannot give joint 'elbow' an armature: no joint of that name");
+  expect_model_error(
+      [&] {
+        ModelBuilder b = tree({{"base", "a"}, {"a", "b"}, {"b", "c"}});
+        b.set_armature("base_a", -0.1);
+        b.build(g);
+      },
+      "joint 'base_a': the armature -0.1 kg m^2 is negative");
+  expect_model_error(
+      [&] {
+        ModelBuilder b = tree({{"base", "a"}});
+        b.add_link(link("d", 1, {}, {1, 1, 1}));
+        b.add_joint(joint("weld", JointKind::Fixed, "a", "d", {}, rpy(0, 0, 0), {1, 0, 0}));
+        b.set_armature("weld", 0.1);
+      },
+      "joint 'weld' is fixed: only a revolute, prismatic or planar joint has an armature");
   // an all-zero or mirrored origin "rotation" would silently build a wrong model
   for (const Mat3<double>& R : {Mat3<double>{}, Mat3<double>{-1, 0, 0, 0, 1, 0, 0, 0, 1}})
     expect_model_error(
@@ -503,6 +520,22 @@ TEST(ModelBuilder, Errors) {
           tree({}).add_joint(joint("bent", JointKind::Revolute, "base", "a", {}, R, {0, 0, 1}));
         },
         "joint 'bent': the origin rotation is not a rotation matrix");
+}
+
+// A joint's armature goes to each of its degrees of freedom (a planar joint's three), in v's
+// order; a model whose joints have none keeps an empty armature.
+TEST(ModelBuilder, ArmatureByDegreeOfFreedom) {
+  const Vec3<double> g{0, 0, -9.81};
+  ModelBuilder b = tree({{"base", "a"}, {"a", "b"}, {"b", "c"}});
+  EXPECT_TRUE(b.build(g).armature.empty());
+  b.set_armature("a_b", 0.25);
+  EXPECT_EQ(b.build(g).armature, (std::vector<double>{0, 0.25, 0}));
+  b.add_link(link("d", 1, {}, {1, 1, 1}));
+  b.add_joint(joint("slide", JointKind::Planar, "c", "d", {}, rpy(0, 0, 0), {0, 0, 1}));
+  b.set_armature("slide", 0.5);
+  const Model<double> model = b.build(g);
+  EXPECT_EQ(model.armature, (std::vector<double>{0, 0.25, 0, 0.5, 0.5, 0.5}));
+  EXPECT_EQ(model.cast<float>().armature, (std::vector<float>{0, 0.25f, 0, 0.5f, 0.5f, 0.5f}));
 }
 
 // An axis is a direction whatever its length: (1e300, 0, 0) has a square that overflows and

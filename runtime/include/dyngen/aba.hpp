@@ -42,9 +42,9 @@ void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
     ws.pA[i] = {cross(w, mul(I.I, w)), cross(w, cross(w, I.h))};
   }
 
-  // articulated inertia pass: U_i = IA_i S_i, D_i = S_i^T U_i, u_i = tau_i - S_i^T pA_i;
-  // Ia = IA_i - U_i U_i^T / D_i, pa = pA_i + Ia c_i + U_i u_i / D_i, with one division per
-  // joint (1 / D_i, reused by the acceleration pass) instead of seven,
+  // articulated inertia pass: U_i = IA_i S_i, D_i = S_i^T U_i (+ the armature),
+  // u_i = tau_i - S_i^T pA_i; Ia = IA_i - U_i U_i^T / D_i, pa = pA_i + Ia c_i + U_i u_i / D_i,
+  // with one division per joint (1 / D_i, reused by the acceleration pass) instead of seven,
   // IA_p += Xup^T Ia Xup, pA_p += Xup^T pa
   for (int i = model.nbodies - 1; i >= 0; --i) {
     TraceHook<S>::enter(i, Pass::ArticulatedInertia);
@@ -57,6 +57,7 @@ void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
     }
     ws.U[i] = mul(ws.IA[i], joint_column(model, i, 0));
     joint_project(model, i, ws.U[i], &ws.D[i]);
+    if (!model.armature.empty()) ws.D[i] = ws.D[i] + model.armature[k];
     ws.Dinv[i] = S(1) / ws.D[i];
     S STpA;
     joint_project(model, i, ws.pA[i], &STpA);

@@ -25,7 +25,7 @@ void crba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
   for (std::size_t k = 0; k < n * n; ++k) M[k] = S{};
 
   // backward pass: Ic_p += Xup^T Ic_i Xup; for each column d of S_i: F = Ic_i S_id,
-  // M_ii[d] = S_i^T F; M_ij[d] = M_ji^T[d] = S_j^T F with F carried to each ancestor j
+  // M_ii[d] = S_i^T F (+ the armature on the diagonal); M_ij[d] = M_ji^T[d] = S_j^T F with F carried to each ancestor j
   for (int i = model.nbodies - 1; i >= 0; --i) {
     TraceHook<S>::enter(i, Pass::CompositeInertia);
     const int p = model.parent[i];
@@ -35,6 +35,7 @@ void crba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
       const std::size_t row = static_cast<std::size_t>(model.v_index[i] + d);
       Force<S> F = mul(ws.Ic[i], joint_column(model, i, d));
       joint_project(model, i, F, &M[row * n + model.v_index[i]]);
+      if (!model.armature.empty()) M[row * n + row] = M[row * n + row] + model.armature[row];
       for (int j = i; model.parent[j] >= 0;) {
         TraceHook<S>::enter(model.parent[j], Pass::Column);
         F = apply_force_T(ws.Xup[j], F);

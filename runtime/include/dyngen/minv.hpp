@@ -49,6 +49,7 @@ void minv(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
     }
     ws.U[i] = mul(ws.IA[i], joint_column(model, i, 0));
     joint_project(model, i, ws.U[i], &ws.D[i]);
+    if (!model.armature.empty()) ws.D[i] = ws.D[i] + model.armature[k];
     ws.Dinv[i] = S(1) / ws.D[i];
     for (int c = k; c < end; ++c) {
       S STpA;

@@ -68,6 +68,9 @@ struct Model {
   std::vector<std::string> body_name;  // [nbodies]
   std::vector<std::string> joint_name; // [nbodies]
   std::vector<Frame<S>> frames;        // the frames whose placements and Jacobians are asked for
+  /// [nv] rotor inertia (armature) of each degree of freedom, added to M's diagonal: RNEA adds
+  /// armature a to tau, CRBA armature to M_kk, ABA to its pivot D. Empty when no joint has any.
+  std::vector<S> armature;
 
   /// The same model in another scalar type; each constant is converted with static_cast.
   template <class T>
@@ -91,6 +94,7 @@ struct Model {
                      {c<T>(J.xx), c<T>(J.yy), c<T>(J.zz), c<T>(J.xy), c<T>(J.xz), c<T>(J.yz)}});
     }
     for (const Frame<S>& f : frames) m.frames.push_back({f.name, f.body, cast_xform<T>(f.placement)});
+    for (const S& x : armature) m.armature.push_back(c<T>(x));
     return m;
   }
 
@@ -150,10 +154,12 @@ struct FrameRecord {
   double r[3];
 };
 
-/// Rebuilds a model from its records (the inverse of model_records()).
+/// Rebuilds a model from its records (the inverse of model_records()); armature: by degree of
+/// freedom, or empty.
 inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
                                         const double (&gravity)[3],
-                                        std::span<const FrameRecord> frames = {}) {
+                                        std::span<const FrameRecord> frames = {},
+                                        std::span<const double> armature = {}) {
   Model<double> m;
   m.nbodies = static_cast<int>(bodies.size());
   m.gravity = {gravity[0], gravity[1], gravity[2]};
@@ -175,6 +181,7 @@ inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
     m.frames.push_back({f.name, f.body,
                         {{f.E[0], f.E[1], f.E[2], f.E[3], f.E[4], f.E[5], f.E[6], f.E[7], f.E[8]},
                          {f.r[0], f.r[1], f.r[2]}}});
+  m.armature.assign(armature.begin(), armature.end());
   return m;
 }
 

@@ -45,6 +45,9 @@ struct JointSpec {
   Vec3<double> xyz;
   Mat3<double> R{1, 0, 0, 0, 1, 0, 0, 0, 1};
   Vec3<double> axis{1, 0, 0};
+  /// Rotor inertia (MuJoCo's armature) of each of the joint's degrees of freedom, kg m^2 about a
+  /// revolute axis, kg along a prismatic one; a free joint has none.
+  double armature = 0;
 };
 
 /// R from roll, pitch, yaw about fixed x, y, z axes: R = Rz(yaw) Ry(pitch) Rx(roll).
@@ -172,6 +175,14 @@ inline void check_model_numbers(const Model<double>& model,
     detail::check_divisor(link + "the moment of inertia xx about the link origin", J.xx, "kg m^2");
     detail::check_divisor(link + "the moment of inertia yy about the link origin", J.yy, "kg m^2");
     detail::check_divisor(link + "the moment of inertia zz about the link origin", J.zz, "kg m^2");
+    if (model.armature.empty()) continue;
+    const double armature = model.armature[model.v_index[i]];
+    const char* unit = is_revolute(model.joint_type[i]) ? "kg m^2" : "kg";
+    detail::check_constants(joint + "the armature", {armature}, unit, max_magnitude);
+    detail::check_divisor(joint + "the armature", armature, unit);
+    if (armature < 0)
+      throw ModelError(joint + "the armature " + detail::number_text(armature) + " " + unit +
+                       " is negative: a rotor inertia adds to M's diagonal");
   }
 }
 
@@ -256,6 +267,20 @@ class ModelBuilder {
     if (!joint_index_.emplace(joint.name, joints_.size()).second)
       throw ModelError("joint '" + joint.name + "' is defined twice");
     joints_.push_back(joint);
+    if (joint.armature != 0) set_armature(joint.name, joint.armature);
+  }
+
+  /// Sets a moving joint's armature (JointSpec::armature).
+  void set_armature(const std::string& joint_name, double armature) {
+    const auto it = joint_index_.find(joint_name);
+    if (it == joint_index_.end())
+      throw ModelError("cannot give joint '" + joint_name + "' an armature: no joint of that name");
+    JointSpec& joint = joints_[it->second];
+    if (joint.kind == JointKind::Fixed || joint.kind == JointKind::Floating)
+      throw ModelError("joint '" + joint_name + "' is " +
+                       (joint.kind == JointKind::Fixed ? "fixed" : "floating") +
+                       ": only a revolute, prismatic or planar joint has an armature");
+    joint.armature = armature;
   }
 
   /// Turns a joint into a fixed one, at q = 0.
@@ -304,12 +329,15 @@ class ModelBuilder {
     int root_body = -1;
     if (floating_base) {
       root_body = add_body(model, -1, identity(), JointType::Free, {0, 0, 0}, "floating_base",
-                           links_[roots[0]].name, link_inertia(links_[roots[0]]));
+                           links_[roots[0]].name, link_inertia(links_[roots[0]]), 0);
     }
     const int visited = visit(model, child_joints, roots[0], root_body);
     if (visited != nlinks)
       throw ModelError("some links are not connected to the root link '" + links_[roots[0]].name +
                        "' (the tree has a loop)");
+    if (std::all_of(model.armature.begin(), model.armature.end(),
+                    [](double x) { return x == 0; }))
+      model.armature.clear();
     check_model_numbers(model);
     return model;
   }
@@ -353,11 +381,11 @@ class ModelBuilder {
         const Vec3<double> u = in_plane_direction(n);
         const Vec3<double> w = cross(n, u);
         const int bu = add_body(model, body, X_child_body, JointType::Prismatic, u,
-                                joint.name + ":u", links_[c].name + ":u", {});
+                                joint.name + ":u", links_[c].name + ":u", {}, joint.armature);
         const int bw = add_body(model, bu, identity(), JointType::Prismatic, w,
-                                joint.name + ":w", links_[c].name + ":w", {});
+                                joint.name + ":w", links_[c].name + ":w", {}, joint.armature);
         const int b = add_body(model, bw, identity(), revolute_type(n), n, joint.name + ":rot",
-                               links_[c].name, link_inertia(links_[c]));
+                               links_[c].name, link_inertia(links_[c]), joint.armature);
         model.frames.push_back({links_[c].name, b, identity()});
         stack.push_back({c, b, identity()});
       } else {
@@ -366,8 +394,10 @@ class ModelBuilder {
                                                                     : revolute_type(unit_axis(joint));
         const Vec3<double> axis = joint.kind == JointKind::Floating ? Vec3<double>{0, 0, 0}
                                                                     : unit_axis(joint);
+        if (type == JointType::Free && joint.armature != 0)
+          throw ModelError("joint '" + joint.name + "' is floating: a free joint has no armature");
         const int b = add_body(model, body, X_child_body, type, axis, joint.name, links_[c].name,
-                               link_inertia(links_[c]));
+                               link_inertia(links_[c]), joint.armature);
         model.frames.push_back({links_[c].name, b, identity()});
         stack.push_back({c, b, identity()});
       }
@@ -377,7 +407,9 @@ class ModelBuilder {
 
   static int add_body(Model<double>& model, int parent, const Xform<double>& X_tree,
                       JointType type, const Vec3<double>& axis, const std::string& joint_name,
-                      const std::string& body_name, const RigidInertia<double>& inertia) {
+                      const std::string& body_name, const RigidInertia<double>& inertia,
+                      double armature) {
+    model.armature.insert(model.armature.end(), joint_nv(type), armature);
     model.parent.push_back(parent);
     model.X_tree.push_back(X_tree);
     model.joint_type.push_back(type);

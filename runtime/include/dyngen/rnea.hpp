@@ -52,10 +52,14 @@ void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
                scale(ac, I.m) + cross(wd, I.h) + cross(w, cross(w, I.h))};
   }
 
-  // backward pass: tau_i = S^T f_i, f_p += Xup^T f_i
+  // backward pass: tau_i = S^T f_i (+ armature qdd_i), f_p += Xup^T f_i
   for (int i = model.nbodies - 1; i >= 0; --i) {
     TraceHook<S>::enter(i, Pass::Backward);
-    joint_project(model, i, ws.f[i], &tau[model.v_index[i]]);
+    const int k = model.v_index[i];
+    joint_project(model, i, ws.f[i], &tau[k]);
+    if (!model.armature.empty())
+      for (int d = 0; d < joint_nv(model.joint_type[i]); ++d)
+        tau[k + d] = tau[k + d] + model.armature[k + d] * qdd[k + d];
     const int p = model.parent[i];
     if (p >= 0) ws.f[p] = ws.f[p] + apply_force_T(ws.Xup[i], ws.f[i]);
   }

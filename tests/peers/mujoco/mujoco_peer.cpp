@@ -220,7 +220,7 @@ MujocoRobot::MujocoRobot(const std::string& path, const Model<double>& model,
   if (!m_) throw std::runtime_error("MuJoCo cannot load " + path + ": " + error.data());
 
   // Forces dyngen does not model: joint limits and friction (constraints), damping (passive),
-  // contacts, equality constraints and actuators; armature would add to the mass matrix.
+  // contacts, equality constraints and actuators. Armature is dyngen's, set below.
   m_->opt.disableflags |= mjDSBL_CONSTRAINT | mjDSBL_EQUALITY | mjDSBL_FRICTIONLOSS | mjDSBL_LIMIT |
                           mjDSBL_CONTACT | mjDSBL_PASSIVE | mjDSBL_ACTUATION;
   std::fill_n(m_->dof_damping, m_->nv, 0.0);
@@ -248,6 +248,8 @@ MujocoRobot::MujocoRobot(const std::string& path, const Model<double>& model,
       throw std::runtime_error(path + ": MuJoCo has no joint '" + model_.joint_name[i] +
                                "' of type " + joint_type_name(model_.joint_type[i]));
     joint_.push_back(j);
+    if (!model_.armature.empty() && model_.joint_type[i] != JointType::Free)
+      m_->dof_armature[m_->jnt_dofadr[j]] = model_.armature[model_.v_index[i]];
   }
   d_.reset(mj_makeData(m_.get()));
 }
@@ -347,13 +349,12 @@ std::vector<double> MujocoRobot::crba(std::span<const double> q) {
 std::vector<double> MujocoRobot::rnea(std::span<const double> q, std::span<const double> v,
                                       std::span<const double> a) {
   const Eigen::MatrixXd A = set_state(q, v);
-  mj_fwdPosition(m_.get(), d_.get());
-  mj_fwdVelocity(m_.get(), d_.get());
   Eigen::Map<Eigen::VectorXd>(d_->qacc, m_->nv) =
       A * Eigen::Map<const Eigen::VectorXd>(a.data(), model_.nv) + free_joint_bias(q, v);
-  Eigen::VectorXd tau(m_->nv);
-  mj_rne(m_.get(), d_.get(), 1, tau.data());
-  const Eigen::VectorXd tau_dyngen = A.transpose() * tau;
+  // with constraints and passive forces disabled, qfrc_inverse = M qacc + bias, armature in M
+  mj_inverse(m_.get(), d_.get());
+  const Eigen::VectorXd tau_dyngen =
+      A.transpose() * Eigen::Map<const Eigen::VectorXd>(d_->qfrc_inverse, m_->nv);
   return {tau_dyngen.begin(), tau_dyngen.end()};
 }
 

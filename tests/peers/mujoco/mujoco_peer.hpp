@@ -86,7 +86,7 @@ class MujocoRobot {
   /// Mass matrix, row-major nv x nv, from mj_fwdPosition.
   std::vector<double> crba(std::span<const double> q);
 
-  /// Inverse dynamics, from mj_rne with accelerations.
+  /// Inverse dynamics, from mj_inverse's qfrc_inverse.
   std::vector<double> rnea(std::span<const double> q, std::span<const double> v,
                            std::span<const double> a);
 
