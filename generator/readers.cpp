@@ -27,13 +27,6 @@ std::string or_list(const std::vector<std::string>& items) {
   return text;
 }
 
-RobotDescription refuse_mjcf(const std::string& path, const std::string&) {
-  throw InputError(fmt::format(
-      "{}: MJCF (MuJoCo's format, root element <mujoco>) is not supported yet; give dyngen the "
-      "robot as {}",
-      path, robot_file_formats()));
-}
-
 /// ur5.urdf.xacro: a URDF written with macros, which ROS's xacro expands.
 RobotDescription refuse_xacro(const std::string& path, const std::string&) {
   std::string urdf = std::filesystem::path(path).stem().string();
@@ -50,7 +43,7 @@ const std::vector<Reader>& readers() {
   static const std::vector<Reader> table = {
       {"URDF", {".urdf", ".xml"}, "robot", parse_urdf},
       {"chain spec", {".yaml", ".yml"}, "", parse_chain},
-      {"MJCF", {".xml"}, "mujoco", refuse_mjcf, true},
+      {"MJCF", {".xml"}, "mujoco", parse_mjcf},
       // refused by its extension: its root element is URDF's
       {"xacro", {".xacro"}, "", refuse_xacro, true},
   };

@@ -17,6 +17,7 @@ namespace dyngen::gen {
 /// The robot in `text`, read from `path` (which messages name): the readers of the table.
 RobotDescription parse_urdf(const std::string& path, const std::string& text);
 RobotDescription parse_chain(const std::string& path, const std::string& text);
+RobotDescription parse_mjcf(const std::string& path, const std::string& text);
 
 struct Reader {
   std::string_view format;                   // as --help and messages name it: "URDF"

@@ -26,6 +26,7 @@ main=(
   nlohmann-json3-dev       # dyngen eval and report: JSON
   libmpfrc++-dev libmpfr-dev libgmp-dev  # the MPFR reference (numerics/): generation's estimates
   libgtest-dev             # the generated package's check, and the tests
+  libmujoco-dev libgl-dev  # MJCF, read by MuJoCo's compiler; its CMake config needs OpenGL
 )
 report=(
   libbenchmark-dev         # dyngen report's timings
@@ -39,7 +40,6 @@ python=(
   python3-pytest python3-matplotlib       # its tests, and examples/python's plot
 )
 peers=(
-  libmujoco-dev libgl-dev  # tests/peers/mujoco; MuJoCo's CMake config needs OpenGL
   liborocos-kdl-dev libkdl-parser-dev  # tests/peers/kdl
 )
 

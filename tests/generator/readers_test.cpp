@@ -32,7 +32,7 @@ std::set<std::string> read_extensions() {
   return extensions;
 }
 
-TEST(Readers, UrdfAndChainSpecAreReadByTheirExtensions) {
+TEST(Readers, UrdfMjcfAndChainSpecAreReadByTheirExtensions) {
   EXPECT_EQ(read_extensions(), (std::set<std::string>{".urdf", ".xml", ".yaml", ".yml"}));
 }
 
@@ -47,6 +47,17 @@ TEST(Readers, FormatsSharingAnExtensionHaveDistinctRootElements) {
           EXPECT_NE(a.root, b.root) << a.format << " and " << b.format << " share " << ext;
         }
     }
+}
+
+TEST(Readers, XmlWithAMujocoRootIsReadAsMjcf) {
+  const Robot robot = load_robot(models + "/mjcf/quadruped.xml");
+  EXPECT_EQ(robot.name, "mjcf_quadruped");
+  EXPECT_EQ(robot.model.nv, 18);
+  EXPECT_EQ(robot.model.joint_type[0], dyngen::JointType::Free);
+  ASSERT_EQ(robot.warnings.size(), 1u);
+  EXPECT_NE(robot.warnings[0].find("<contact>, <keyframe>, <option> not used by dyngen"),
+            std::string::npos)
+      << robot.warnings[0];
 }
 
 TEST_F(Scratch, XmlWithARobotRootIsReadAsUrdf) {
