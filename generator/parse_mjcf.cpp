@@ -85,6 +85,40 @@ struct Document {
   std::vector<std::string> meshes;   // "body 'a' (mesh 'shell')": bodies with mesh geoms
 };
 
+/// Drops the mesh geoms of the bodies under e that have an <inertial>: their inertia is given,
+/// so their meshes (visual or collision shapes, whose files may not be at hand) play no part.
+/// Adds the meshes still used to `used`.
+void drop_mesh_geoms(tinyxml2::XMLElement* e, std::set<std::string>& used) {
+  const bool given = e->FirstChildElement("inertial") != nullptr;
+  for (tinyxml2::XMLElement* c = e->FirstChildElement(); c;) {
+    tinyxml2::XMLElement* next = c->NextSiblingElement();
+    const std::string_view name = c->Name();
+    if (name == "geom" && c->Attribute("mesh")) {
+      if (given) e->DeleteChild(c);
+      else used.insert(c->Attribute("mesh"));
+    } else if (name == "body") {
+      drop_mesh_geoms(c, used);
+    }
+    c = next;
+  }
+}
+
+/// Drops the <mesh> assets that no geom uses any more (a mesh is named by its file's stem when
+/// it has no name).
+void drop_unused_meshes(tinyxml2::XMLElement* root, const std::set<std::string>& used) {
+  for (tinyxml2::XMLElement* asset = root->FirstChildElement("asset"); asset;
+       asset = asset->NextSiblingElement("asset"))
+    for (tinyxml2::XMLElement* mesh = asset->FirstChildElement("mesh"); mesh;) {
+      tinyxml2::XMLElement* next = mesh->NextSiblingElement("mesh");
+      const char* file = mesh->Attribute("file");
+      const std::string name = mesh->Attribute("name") ? mesh->Attribute("name")
+                               : file ? fs::path(file).stem().string()
+                                      : "";
+      if (!used.count(name)) asset->DeleteChild(mesh);
+      mesh = next;
+    }
+}
+
 /// The bodies under e with a mesh geom, in words.
 void mesh_bodies(const tinyxml2::XMLElement* e, const char* body, std::vector<std::string>& out) {
   for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
@@ -104,6 +138,14 @@ Document dynamics_only(const std::string& path, const std::string& text) {
   Document out;
   out.gravity = option_gravity(path, root);
   if (const char* model = root->Attribute("model")) out.model = model;
+  const tinyxml2::XMLElement* compiler = root->FirstChildElement("compiler");
+  if (!(compiler && compiler->Attribute("inertiafromgeom", "true"))) {
+    std::set<std::string> used;
+    for (tinyxml2::XMLElement* world = root->FirstChildElement("worldbody"); world;
+         world = world->NextSiblingElement("worldbody"))
+      drop_mesh_geoms(world, used);
+    drop_unused_meshes(root, used);
+  }
   for (const tinyxml2::XMLElement* world = root->FirstChildElement("worldbody"); world;
        world = world->NextSiblingElement("worldbody"))
     mesh_bodies(world, nullptr, out.meshes);
@@ -154,11 +196,10 @@ MjModel compile(const std::string& path, const Document& doc) {
                        static_cast<int>(error.size())));
   std::error_code ignored;
   fs::remove(scratch, ignored);
-  if (!m && std::string_view(error.data()).find("could not open") != std::string_view::npos &&
-      !doc.meshes.empty())
+  if (!m && !doc.meshes.empty() && std::string_view(error.data()).find(" file ") != std::string_view::npos)
     throw InputError(fmt::format(
-        "{}: MuJoCo's compiler: {}; the inertia of {} comes from its mesh unless the body has "
-        "an <inertial>: give dyngen the mesh files beside the model, or the bodies <inertial>s",
+        "{}: MuJoCo's compiler: {}; the inertia of {} comes from its mesh (no <inertial>): give "
+        "dyngen the mesh files where the model names them, or the bodies <inertial>s",
         path, compiler_error(error.data()), fmt::join(doc.meshes, ", ")));
   if (!m)
     throw InputError(fmt::format("{}: MuJoCo's compiler: {}", path, compiler_error(error.data())));

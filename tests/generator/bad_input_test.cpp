@@ -90,7 +90,8 @@ const std::vector<Case> bad_robots = {
      {"mjcf_equality.xml:8: <equality> constraints are not supported"}},
     {"MjcfFrame", bad + "/mjcf_frame.xml", {}, {"mjcf_frame.xml:4: <frame> is not supported"}},
     {"MjcfMissingMesh", bad + "/mjcf_missing_mesh.xml", {},
-     {"no_such_mesh.stl", "the inertia of body 'a' (mesh 'shell') comes from its mesh"}},
+     {"no_such_mesh.stl", "the inertia of body 'a' (mesh 'shell') comes from its mesh (no "
+      "<inertial>)"}},
     {"XmlOfAnotherFormat", bad + "/other_root.xml", {},
      {"other_root.xml: root element <sdf>", "<robot> for URDF", "<mujoco> for MJCF"}},
     {"XmlWithoutAnElement", bad + "/no_element.xml", {},

@@ -60,6 +60,14 @@ TEST(Readers, XmlWithAMujocoRootIsReadAsMjcf) {
       << robot.warnings[0];
 }
 
+// the bodies' inertia is given, so their meshes' files (not here) are not needed
+TEST(Readers, MjcfMeshGeomsOfBodiesWithAnInertialAreNotRead) {
+  const Robot robot = load_robot(models + "/mjcf/visual_meshes.xml");
+  ASSERT_EQ(robot.model.nv, 2);
+  EXPECT_EQ(robot.model.I[0].m, 2.0);
+  EXPECT_EQ(robot.model.I[1].m, 1.2);
+}
+
 TEST_F(Scratch, XmlWithARobotRootIsReadAsUrdf) {
   const fs::path xml = dir / "double_pendulum.xml";
   fs::copy_file(models + "/double_pendulum.urdf", xml);
