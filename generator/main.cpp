@@ -295,7 +295,8 @@ struct ModelFlags {
   void add_to(CLI::App& app) {
     auto* gravity_opt = app.add_option("--gravity", gravity,
                                        "gravity x,y,z in m/s^2, base coordinates (default: the "
-                                       "chain spec's, else 0,0,-9.81)");
+                                       "chain spec's or MJCF's <option gravity>, else "
+                                       "0,0,-9.81)");
     app.add_flag("--no-gravity", no_gravity, "gravity 0,0,0")->excludes(gravity_opt);
     app.add_flag("--floating-base", floating_base,
                  "put the root link on a free 6-DoF joint (q: position, then unit quaternion "
