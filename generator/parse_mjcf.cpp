@@ -190,7 +190,13 @@ MjModel compile(const std::string& path, const Document& doc) {
   const fs::path original(path);
   const fs::path scratch = original.parent_path() /
                            fmt::format(".{}.dyngen-{}.xml", original.stem().string(), getpid());
-  write_file(scratch, text);
+  try {
+    write_file(scratch, text);
+  } catch (const FileError& e) {
+    throw FileError(fmt::format("{}: dyngen compiles an MJCF file through a copy beside it (so "
+                                "that its includes and meshes are found), and cannot write one: {}",
+                                path, e.what()));
+  }
   std::array<char, 1000> error{};
   MjModel m(mj_loadXML(scratch.string().c_str(), nullptr, error.data(),
                        static_cast<int>(error.size())));
