@@ -535,6 +535,34 @@ TEST(CLanguage, PrintsTheStatementsOfTheCppCode) {
   EXPECT_EQ(statements["c"], statements["c++"]);
 }
 
+// The header says which rotor inertias are built into M, in both languages, and a robot
+// without any gets no such line.
+TEST(Armature, TheHeaderListsTheRotorInertias) {
+  LoadOptions load;
+  load.armature = {{"all", 0.05}, {"elbow_joint", 0.3}};
+  const std::string path = std::string(DYNGEN_TEST_MODELS) + "/ur5.urdf";
+  const Robot geared = load_robot(path, load), bare = load_robot(path);
+  for (const std::string language : {"c++", "c"}) {
+    GenerateOptions options;
+    options.name = "ur5";
+    options.language = language;
+    const std::string header = language == "c" ? "ur5_dynamics.h" : "ur5_dynamics.hpp";
+    for (const auto* robot : {&geared, &bare})
+      for (const GeneratedFile& f : generate(*robot, options).files) {
+        if (f.name != header) continue;
+        const std::size_t at = f.text.find("/// Rotor inertias (armature");
+        if (robot == &bare) {
+          EXPECT_EQ(at, std::string::npos) << language;
+          continue;
+        }
+        ASSERT_NE(at, std::string::npos) << language;
+        const std::string lines = f.text.substr(at, f.text.find("\n\n", at) - at);
+        EXPECT_NE(lines.find("shoulder_pan_joint 0.05,"), std::string::npos) << lines;
+        EXPECT_NE(lines.find("elbow_joint 0.3,"), std::string::npos) << lines;
+      }
+  }
+}
+
 TEST(CLanguage, RefusesAlgorithmsThatCallKernels) {
   const Robot robot =
       load_robot(std::string(DYNGEN_TEST_MODELS) + "/atlas.urdf", floating_base());
