@@ -308,6 +308,11 @@ RobotDescription parse_mjcf(const std::string& path, const std::string& text) {
   const Document doc = dynamics_only(path, text);
   const MjModel compiled = compile(path, doc);
   const mjModel* m = compiled.get();
+  if (m->neq > 0)  // from an <include>d file: the document's own are refused above
+    throw InputError(fmt::format(
+        "{}: {} <equality> constraints (in an included file) are not supported: they couple the "
+        "joints, which dyngen's tree algorithms do not model",
+        path, m->neq));
   if (!doc.dropped.empty())
     robot.warnings.push_back(fmt::format("{}: <{}> not used by dyngen (no part in the rigid-body "
                                          "dynamics) and ignored",

@@ -89,6 +89,9 @@ const std::vector<Case> bad_robots = {
     {"MjcfEquality", bad + "/mjcf_equality.xml", {},
      {"mjcf_equality.xml:8: <equality> constraints are not supported"}},
     {"MjcfFrame", bad + "/mjcf_frame.xml", {}, {"mjcf_frame.xml:4: <frame> is not supported"}},
+    {"MjcfIncludedEquality", bad + "/mjcf_included_equality.xml", {},
+     {"mjcf_included_equality.xml: 1 <equality> constraints (in an included file) are not "
+      "supported"}},
     {"MjcfMissingMesh", bad + "/mjcf_missing_mesh.xml", {},
      {"no_such_mesh.stl", "the inertia of body 'a' (mesh 'shell') comes from its mesh (no "
       "<inertial>)"}},
