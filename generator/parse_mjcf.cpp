@@ -301,6 +301,26 @@ void add_joints(const std::string& path, const mjModel* m, int b, const std::str
     builder.add_joint(fixed_joint(body + ":body", link, body, scale(anchor, -1.0), identity));
 }
 
+/// The joint properties MuJoCo turns into passive or constraint forces, which are not part of
+/// the rigid-body dynamics: "damping, limits", or "".
+std::string passive_properties(const mjModel* m) {
+  bool damping = false, stiffness = false, friction = false, limits = false;
+  for (int j = 0; j < m->njnt; ++j) {
+    stiffness = stiffness || m->jnt_stiffness[j] != 0;
+    limits = limits || m->jnt_limited[j];
+  }
+  for (int k = 0; k < m->nv; ++k) {
+    damping = damping || m->dof_damping[k] != 0;
+    friction = friction || m->dof_frictionloss[k] != 0;
+  }
+  std::vector<std::string> found;
+  if (damping) found.emplace_back("damping");
+  if (stiffness) found.emplace_back("stiffness");
+  if (friction) found.emplace_back("friction loss");
+  if (limits) found.emplace_back("limits");
+  return fmt::format("{}", fmt::join(found, ", "));
+}
+
 }  // namespace
 
 RobotDescription parse_mjcf(const std::string& path, const std::string& text) {
@@ -317,6 +337,11 @@ RobotDescription parse_mjcf(const std::string& path, const std::string& text) {
     robot.warnings.push_back(fmt::format("{}: <{}> not used by dyngen (no part in the rigid-body "
                                          "dynamics) and ignored",
                                          path, fmt::join(doc.dropped, ">, <")));
+  if (const std::string passive = passive_properties(m); !passive.empty())
+    robot.warnings.push_back(fmt::format(
+        "{}: the joints' {} (MuJoCo's passive and constraint forces) are not part of the "
+        "rigid-body dynamics that dyngen computes, and are ignored",
+        path, passive));
   robot.gravity = doc.gravity;
   robot.name = doc.model.empty() ? fs::path(path).stem().string() : doc.model;
   std::vector<std::string> body(m->nbody);

@@ -54,10 +54,15 @@ TEST(Readers, XmlWithAMujocoRootIsReadAsMjcf) {
   EXPECT_EQ(robot.name, "mjcf_quadruped");
   EXPECT_EQ(robot.model.nv, 18);
   EXPECT_EQ(robot.model.joint_type[0], dyngen::JointType::Free);
-  ASSERT_EQ(robot.warnings.size(), 1u);
+  ASSERT_EQ(robot.warnings.size(), 2u);
   EXPECT_NE(robot.warnings[0].find("<contact>, <keyframe>, <option> not used by dyngen"),
             std::string::npos)
       << robot.warnings[0];
+  // its legs' class sets damping, and no joint has limits
+  EXPECT_NE(robot.warnings[1].find("the joints' damping (MuJoCo's passive and constraint "
+                                   "forces) are not part of the rigid-body dynamics"),
+            std::string::npos)
+      << robot.warnings[1];
 }
 
 // the bodies' inertia is given, so their meshes' files (not here) are not needed
