@@ -343,6 +343,7 @@ RobotDescription parse_mjcf(const std::string& path, const std::string& text) {
         "rigid-body dynamics that dyngen computes, and are ignored",
         path, passive));
   robot.gravity = doc.gravity;
+  robot.root_is_world = true;
   robot.name = doc.model.empty() ? fs::path(path).stem().string() : doc.model;
   std::vector<std::string> body(m->nbody);
   body[0] = "world";

@@ -279,6 +279,11 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
     throw InputError(fmt::format("{}: the robot has {} links; dyngen reads at most {} (a tree of "
                                  "{} joints)",
                                  path, links, max_joints + 1, max_joints));
+  if (options.floating_base && description.root_is_world)
+    throw InputError(fmt::format(
+        "{}: --floating-base puts the root link on a free joint, and this file's root is the "
+        "world: give the floating body a free joint in the file (<freejoint/>) instead",
+        path));
   if (options.gravity) {
     try {
       check_gravity(*options.gravity);

@@ -31,6 +31,9 @@ struct RobotDescription {
   std::optional<Vec3<double>> gravity;  // a chain spec may set it
   std::vector<std::string> warnings;
   std::vector<std::pair<std::string, std::string>> mimics;  // (joint, the joint it mimics)
+  /// The root link is the world, whose bodies float by their own free joints (MJCF), not a
+  /// robot link that --floating-base could put on one.
+  bool root_is_world = false;
 };
 
 /// A file's bytes; InputError naming the path and the system's reason when it cannot be read.

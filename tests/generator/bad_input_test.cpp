@@ -89,6 +89,9 @@ const std::vector<Case> bad_robots = {
     {"MjcfEquality", bad + "/mjcf_equality.xml", {},
      {"mjcf_equality.xml:8: <equality> constraints are not supported"}},
     {"MjcfFrame", bad + "/mjcf_frame.xml", {}, {"mjcf_frame.xml:4: <frame> is not supported"}},
+    {"MjcfFloatingBase", models + "/mjcf/arm.xml", {"--floating-base"},
+     {"arm.xml: --floating-base puts the root link on a free joint, and this file's root is "
+      "the world", "<freejoint/>"}},
     {"MjcfIncludedEquality", bad + "/mjcf_included_equality.xml", {},
      {"mjcf_included_equality.xml: 1 <equality> constraints (in an included file) are not "
       "supported"}},
