@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "files.hpp"
+#include "output.hpp"
 #include "robot.hpp"
 
 namespace {
@@ -71,6 +72,18 @@ TEST(Readers, MjcfMeshGeomsOfBodiesWithAnInertialAreNotRead) {
   ASSERT_EQ(robot.model.nv, 2);
   EXPECT_EQ(robot.model.I[0].m, 2.0);
   EXPECT_EQ(robot.model.I[1].m, 1.2);
+}
+
+// MuJoCo 3's keywords where they do not change the dynamics (integrator="implicitfast", which
+// MuJoCo 2.2 rejects) are dropped with their element, so the file loads
+TEST_F(Scratch, MjcfWithMujoco3OptionsLoads) {
+  const fs::path xml = dir / "implicit.xml";
+  write_file(xml, "<mujoco model=\"implicit\"><option integrator=\"implicitfast\" "
+                  "gravity=\"0 0 -3.7\"/><worldbody><body name=\"a\"><joint name=\"j\"/>"
+                  "<geom size=\"0.1\" pos=\"0.2 0 0\"/></body></worldbody></mujoco>\n");
+  const Robot robot = load_robot(xml.string());
+  EXPECT_EQ(robot.model.nv, 1);
+  EXPECT_EQ(robot.model.gravity.z, -3.7);  // <option gravity> is still read
 }
 
 TEST_F(Scratch, XmlWithARobotRootIsReadAsUrdf) {
