@@ -27,17 +27,23 @@ using namespace dyngen::gen;
 
 namespace {
 
+/// text as a finite number, or nothing: strtod, not std::stod, which throws out_of_range on a
+/// subnormal number such as 1e-320.
+std::optional<double> finite_number(const std::string& text) {
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(x)) return {};
+  return x;
+}
+
 Vec3<double> parse_gravity(const std::string& text) {
   std::vector<double> g;
   std::stringstream s(text);
   std::string item;
   while (std::getline(s, item, ',')) {
-    // strtod, not std::stod, which throws out_of_range on a subnormal number such as 1e-320
-    char* end = nullptr;
-    const double x = std::strtod(item.c_str(), &end);
-    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(x))
-      throw InputError(fmt::format("--gravity {}: '{}' is not a finite number", text, item));
-    g.push_back(x);
+    const std::optional<double> x = finite_number(item);
+    if (!x) throw InputError(fmt::format("--gravity {}: '{}' is not a finite number", text, item));
+    g.push_back(*x);
   }
   if (g.size() != 3)
     throw InputError(fmt::format("--gravity {}: expected three numbers x,y,z", text));
@@ -52,12 +58,11 @@ std::pair<std::string, double> parse_armature(const std::string& text) {
     throw InputError(fmt::format("--armature {}: expected JOINT=VALUE, or all=VALUE",
                                  safe_text(text)));
   const std::string value = text.substr(at + 1);
-  char* end = nullptr;
-  const double x = std::strtod(value.c_str(), &end);
-  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(x))
+  const std::optional<double> x = finite_number(value);
+  if (!x)
     throw InputError(fmt::format("--armature {}: '{}' is not a finite number", safe_text(text),
                                  safe_text(value)));
-  return {text.substr(0, at), x};
+  return {text.substr(0, at), *x};
 }
 
 /// The suffix of the algorithms that give in a frame's own axes what the algorithm without it
@@ -128,12 +133,10 @@ std::string comma_list(const std::vector<Algorithm>& names) {
 CLI::Validator number_in(double lo, double hi, bool integer = false) {
   return CLI::Validator(
       [=](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double x = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(x) ||
-            (integer && x != std::floor(x)))
+        const std::optional<double> x = finite_number(text);
+        if (!x || (integer && *x != std::floor(*x)))
           return fmt::format("'{}' is not {}", text, integer ? "an integer" : "a finite number");
-        if (!(x >= lo && x <= hi)) return fmt::format("{} is not between {} and {}", text, lo, hi);
+        if (!(*x >= lo && *x <= hi)) return fmt::format("{} is not between {} and {}", text, lo, hi);
         return "";
       },
       fmt::format("{} in [{}, {}]", integer ? "INT" : "NUMBER", lo, hi));

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
-#include <Eigen/Geometry>
 #include <array>
 #include <cstdio>
 #include <memory>
@@ -15,6 +14,7 @@
 #include <vector>
 
 #include "dyngen/dyngen.hpp"
+#include "mujoco_peer.hpp"
 #include "robot.hpp"
 #include "test_support.hpp"
 
@@ -27,10 +27,6 @@ struct MjDeleter {
   void operator()(mjModel* m) const { mj_deleteModel(m); }
   void operator()(mjData* d) const { mj_deleteData(d); }
 };
-
-Eigen::Matrix3d rotation(const double* wxyz) {
-  return Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]).normalized().toRotationMatrix();
-}
 
 class MjcfPeer : public ::testing::TestWithParam<const char*> {};
 
@@ -63,22 +59,10 @@ TEST_P(MjcfPeer, DynamicsAndSitesMatchMujocosOwnCompilation) {
   for (int sample = 0; sample < 20; ++sample) {
     const State s = random_state(model, rng);
     // v_mujoco = A v: a free joint's linear velocity is in world axes in MuJoCo
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nv, nv);
-    Eigen::VectorXd bias = Eigen::VectorXd::Zero(nv);
-    for (int i = 0; i < model.nbodies; ++i) {
-      const int j = joint[i], dof = m->jnt_dofadr[j], iv = model.v_index[i];
-      std::copy_n(&s.q[model.q_index[i]], joint_nq(model.joint_type[i]),
-                  d->qpos + m->jnt_qposadr[j]);
-      if (model.joint_type[i] != JointType::Free) {
-        A(dof, iv) = 1;
-        continue;
-      }
-      const Eigen::Matrix3d E = rotation(&s.q[model.q_index[i] + 3]);
-      A.block<3, 3>(dof, iv) = E;
-      A.block<3, 3>(dof + 3, iv + 3).setIdentity();
-      const Eigen::Vector3d lin(&s.qd[iv]), ang(&s.qd[iv + 3]);
-      bias.segment<3>(dof) = E * ang.cross(lin);
-    }
+    const std::vector<double> pos = mujoco_peer::qpos(m.get(), model, joint, s.q);
+    std::copy(pos.begin(), pos.end(), d->qpos);
+    const Eigen::MatrixXd A = mujoco_peer::velocity_map(m.get(), model, joint, s.q);
+    const Eigen::VectorXd bias = mujoco_peer::free_joint_bias(m.get(), model, joint, s.q, s.qd);
     const Eigen::VectorXd v = to_eigen(s.qd), a = to_eigen(s.qdd), t = to_eigen(s.tau);
     Eigen::Map<Eigen::VectorXd>(d->qvel, nv) = A * v;
     Eigen::Map<Eigen::VectorXd>(d->qacc, nv) = A * a + bias;

@@ -200,6 +200,44 @@ MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& 
   return result;
 }
 
+std::vector<double> qpos(const mjModel* m, const Model<double>& model, std::span<const int> joint,
+                         std::span<const double> q) {
+  std::vector<double> qpos(m->nq);
+  for (int i = 0; i < model.nbodies; ++i)
+    std::copy_n(q.begin() + model.q_index[i], joint_nq(model.joint_type[i]),
+                qpos.begin() + m->jnt_qposadr[joint[i]]);
+  return qpos;
+}
+
+Eigen::MatrixXd velocity_map(const mjModel* m, const Model<double>& model,
+                             std::span<const int> joint, std::span<const double> q) {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(model.nv, model.nv);
+  for (int i = 0; i < model.nbodies; ++i) {
+    const int dof = m->jnt_dofadr[joint[i]], iv = model.v_index[i];
+    if (model.joint_type[i] == JointType::Free) {
+      A.block<3, 3>(dof, iv) = rotation(q.subspan(model.q_index[i] + 3, 4));
+      A.block<3, 3>(dof + 3, iv + 3).setIdentity();
+    } else {
+      A(dof, iv) = 1;
+    }
+  }
+  return A;
+}
+
+Eigen::VectorXd free_joint_bias(const mjModel* m, const Model<double>& model,
+                                std::span<const int> joint, std::span<const double> q,
+                                std::span<const double> v) {
+  Eigen::VectorXd bias = Eigen::VectorXd::Zero(m->nv);
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (model.joint_type[i] != JointType::Free) continue;
+    const int iv = model.v_index[i];
+    const Eigen::Map<const Vector3> lin(v.data() + iv), ang(v.data() + iv + 3);
+    bias.segment<3>(m->jnt_dofadr[joint[i]]) =
+        rotation(q.subspan(model.q_index[i] + 3, 4)) * ang.cross(lin);
+  }
+  return bias;
+}
+
 MujocoRobot::MujocoRobot(const std::string& path, const Model<double>& model,
                          const std::vector<std::string>& locked, bool floating_base)
     : model_(model) {
@@ -292,28 +330,6 @@ Eigen::Matrix<double, 6, 6> MujocoRobot::inertia(int i) const {
   return total;
 }
 
-std::vector<double> MujocoRobot::qpos(std::span<const double> q) const {
-  std::vector<double> qpos(m_->nq);
-  for (int i = 0; i < model_.nbodies; ++i)
-    std::copy_n(q.begin() + model_.q_index[i], joint_nq(model_.joint_type[i]),
-                qpos.begin() + m_->jnt_qposadr[joint_[i]]);
-  return qpos;
-}
-
-Eigen::MatrixXd MujocoRobot::velocity_map(std::span<const double> q) const {
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(model_.nv, model_.nv);
-  for (int i = 0; i < model_.nbodies; ++i) {
-    const int dof = m_->jnt_dofadr[joint_[i]], iv = model_.v_index[i];
-    if (model_.joint_type[i] == JointType::Free) {
-      A.block<3, 3>(dof, iv) = rotation(q.subspan(model_.q_index[i] + 3, 4));
-      A.block<3, 3>(dof + 3, iv + 3).setIdentity();
-    } else {
-      A(dof, iv) = 1;
-    }
-  }
-  return A;
-}
-
 Eigen::MatrixXd MujocoRobot::set_state(std::span<const double> q, std::span<const double> v) {
   const std::vector<double> pos = qpos(q);
   std::copy(pos.begin(), pos.end(), d_->qpos);
@@ -321,19 +337,6 @@ Eigen::MatrixXd MujocoRobot::set_state(std::span<const double> q, std::span<cons
   Eigen::Map<Eigen::VectorXd>(d_->qvel, m_->nv) =
       A * Eigen::Map<const Eigen::VectorXd>(v.data(), model_.nv);
   return A;
-}
-
-Eigen::VectorXd MujocoRobot::free_joint_bias(std::span<const double> q,
-                                             std::span<const double> v) const {
-  Eigen::VectorXd bias = Eigen::VectorXd::Zero(m_->nv);
-  for (int i = 0; i < model_.nbodies; ++i) {
-    if (model_.joint_type[i] != JointType::Free) continue;
-    const int iv = model_.v_index[i];
-    const Eigen::Map<const Vector3> lin(v.data() + iv), ang(v.data() + iv + 3);
-    bias.segment<3>(m_->jnt_dofadr[joint_[i]]) =
-        rotation(q.subspan(model_.q_index[i] + 3, 4)) * ang.cross(lin);
-  }
-  return bias;
 }
 
 std::vector<double> MujocoRobot::crba(std::span<const double> q) {

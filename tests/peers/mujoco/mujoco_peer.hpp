@@ -51,6 +51,19 @@ MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& 
 /// q = 0 of the joints between them.
 std::pair<Eigen::Matrix3d, Eigen::Vector3d> relative_pose(const mjModel* m, int body, int ancestor);
 
+/// dyngen's coordinates against MuJoCo's model m, where joint[i] is the MuJoCo joint of dyngen
+/// body i (see MujocoRobot below): q as qpos; the orthogonal A with v_mujoco = A v at q (joint
+/// order, and a free joint's linear velocity turned into world axes); and the acceleration of
+/// each free joint's world-axis linear velocity when dyngen's is zero, so that
+/// a_mujoco = A a + free_joint_bias(q, v).
+std::vector<double> qpos(const mjModel* m, const Model<double>& model, std::span<const int> joint,
+                         std::span<const double> q);
+Eigen::MatrixXd velocity_map(const mjModel* m, const Model<double>& model,
+                             std::span<const int> joint, std::span<const double> q);
+Eigen::VectorXd free_joint_bias(const mjModel* m, const Model<double>& model,
+                                std::span<const int> joint, std::span<const double> q,
+                                std::span<const double> v);
+
 /// MuJoCo's model of a robot that dyngen loaded, and its dynamics in dyngen's coordinates.
 ///
 /// dyngen's and MuJoCo's q, v and tau differ only in order, except on a free joint: MuJoCo's
@@ -133,15 +146,16 @@ class MujocoRobot {
                                                               std::span<const double> v,
                                                               std::span<const int> bodies);
 
-  /// dyngen's q as MuJoCo's qpos.
-  std::vector<double> qpos(std::span<const double> q) const;
-
-  /// The orthogonal A with v_mujoco = A v at q (joint order and T); forces map the same way.
-  Eigen::MatrixXd velocity_map(std::span<const double> q) const;
-
-  /// The acceleration of each free joint's world-coordinate linear velocity when dyngen's
-  /// acceleration is zero, in MuJoCo's dof order: a_mujoco = A a + free_joint_bias(q, v).
-  Eigen::VectorXd free_joint_bias(std::span<const double> q, std::span<const double> v) const;
+  /// The maps above for this robot; forces map as velocities.
+  std::vector<double> qpos(std::span<const double> q) const {
+    return mujoco_peer::qpos(m_.get(), model_, joint_, q);
+  }
+  Eigen::MatrixXd velocity_map(std::span<const double> q) const {
+    return mujoco_peer::velocity_map(m_.get(), model_, joint_, q);
+  }
+  Eigen::VectorXd free_joint_bias(std::span<const double> q, std::span<const double> v) const {
+    return mujoco_peer::free_joint_bias(m_.get(), model_, joint_, q, v);
+  }
 
  private:
   struct ModelDeleter {
