@@ -182,10 +182,18 @@ std::string frame_name_lines(const Model<double>& model) {
 
 namespace {
 
-/// The header's lines on how q and v hold each free joint.
+/// The header's lines on how q and v hold each free and ball joint.
 std::vector<std::string> free_joint_lines(const Model<double>& model) {
   std::vector<std::string> free_joints;
-  for (int i = 0; i < model.nbodies; ++i)
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (model.joint_type[i] == JointType::Ball) {
+      free_joints.push_back(fmt::format(
+          "ball joint '{}': q[{}..{}] = unit quaternion w, x, y, z of the body in its parent;",
+          safe_text(model.joint_name[i]), model.q_index[i], model.q_index[i] + 3));
+      free_joints.push_back(fmt::format(
+          "v[{}..{}] = angular velocity in the body's own frame (tau alike: moment)",
+          model.v_index[i], model.v_index[i] + 2));
+    }
     if (model.joint_type[i] == JointType::Free) {
       free_joints.push_back(fmt::format(
           "free joint '{}': q[{}..{}] = position of the body in its parent's frame, then",
@@ -195,6 +203,7 @@ std::vector<std::string> free_joint_lines(const Model<double>& model) {
           model.v_index[i], model.v_index[i] + 5));
       free_joints.push_back("body's own frame (tau alike: force, then moment)");
     }
+  }
   return free_joints;
 }
 

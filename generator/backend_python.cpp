@@ -89,14 +89,14 @@ std::string python_attributes(const Model<double>& model) {
   std::string quaternions;
   for (int i = 0; i < model.nbodies; ++i) {
     mass += model.I[i].m;
-    if (model.joint_type[i] == JointType::Free)
-      quaternions += fmt::format("{}{}", quaternions.empty() ? "" : ", ", model.q_index[i] + 3);
+    if (const int o = quaternion_offset(model.joint_type[i]); o >= 0)
+      quaternions += fmt::format("{}{}", quaternions.empty() ? "" : ", ", model.q_index[i] + o);
   }
   std::string text = fmt::format(
       "    m.attr(\"joint_names\") = {};\n"
       "    m.attr(\"gravity_acceleration\") = py::make_tuple({}, {}, {});  // m/s^2\n"
       "    m.attr(\"total_mass\") = {};\n"
-      "    // q[k:k + 4] is a free joint's unit quaternion (w, x, y, z) for each k\n"
+      "    // q[k:k + 4] is a free or ball joint's unit quaternion (w, x, y, z) for each k\n"
       "    m.attr(\"quaternion_indices\") = py::make_tuple({});\n",
       python_names(velocity_names(model)), literal(g.x), literal(g.y), literal(g.z),
       literal(mass), quaternions);

@@ -166,6 +166,7 @@ std::string joint_description(const Model<double>& model, int body) {
     case JointType::Revolute: return fmt::format("revolute axis ({}, {}, {})", k.x, k.y, k.z);
     case JointType::Prismatic: return fmt::format("prismatic axis ({}, {}, {})", k.x, k.y, k.z);
     case JointType::Free: return "free (6 DoF)";
+    case JointType::Ball: return "ball (3 DoF)";
   }
   return "?";
 }

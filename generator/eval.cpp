@@ -205,15 +205,18 @@ class StateReader {
 
   void check_quaternions() const {
     for (int i = 0; i < model_.nbodies; ++i) {
-      if (model_.joint_type[i] != JointType::Free) continue;
-      const double* w = &state_.x[Q][static_cast<std::size_t>(model_.q_index[i] + 3)];
+      const JointType t = model_.joint_type[i];
+      const int o = quaternion_offset(t);
+      if (o < 0) continue;
+      const int k = model_.q_index[i] + o;
+      const double* w = &state_.x[Q][static_cast<std::size_t>(k)];
       const double norm = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2] + w[3] * w[3]);
       if (!(std::abs(norm - 1) <= 1e-6))
         throw InputError(fmt::format(
-            "{}: state {}, field \"q\"[{}..{}]: the quaternion (w, x, y, z) of free joint '{}' "
+            "{}: state {}, field \"q\"[{}..{}]: the quaternion (w, x, y, z) of {} joint '{}' "
             "has length {:.17g}; it must be a unit quaternion",
-            name_, index_, model_.q_index[i] + 3, model_.q_index[i] + 6, model_.joint_name[i],
-            norm));
+            name_, index_, k, k + 3, t == JointType::Ball ? "ball" : "free",
+            model_.joint_name[i], norm));
     }
   }
 

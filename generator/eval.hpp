@@ -31,7 +31,7 @@ struct EvalOptions {
 /// Throws InputError, with nothing written for the state at fault, naming `name`, the state
 /// and the field: for a syntax error (with its line and column), a number beyond double's range,
 /// a field that is missing, unknown, repeated, of the wrong length or not an array of numbers,
-/// a free joint's quaternion that is not of unit length within 1e-6, tau where ABA is
+/// a free or ball joint's quaternion that is not of unit length within 1e-6, tau where ABA is
 /// undefined, or an output that is not finite; and before reading, for derivatives of a robot
 /// without ABA's pivots or above Workspace::max_matrix_nv. The results of the states before
 /// the error stay written, without the closing brackets. Throws FileError when `out` (standard

@@ -155,10 +155,10 @@ void write_harness(const FirmwareBuild& b) {
   const std::string& ns = b.ns;
   std::string quaternions;
   for (int i = 0; i < b.robot.model.nbodies; ++i)
-    if (b.robot.model.joint_type[i] == JointType::Free)
+    if (const int o = quaternion_offset(b.robot.model.joint_type[i]); o >= 0)
       quaternions += fmt::format(
           "  for (int k = 0; k < 4; ++k) q[{} + k] = next(0) < 0 ? -Scalar(0.5) : Scalar(0.5);\n",
-          b.robot.model.q_index[i] + 3);
+          b.robot.model.q_index[i] + o);
   std::string stack_prints;
   for (std::size_t k = 0; k < generate_options.algorithms.size(); ++k)
     stack_prints += fmt::format("  print_stack(\"{}\", stack_use[{}]);\n",

@@ -308,9 +308,10 @@ struct ModelFlags {
         ->type_name("JOINT");
     app.add_flag("--lock-massless", lock_massless, "lock every joint whose subtree has no mass");
     app.add_option("--armature", armature,
-                   "rotor inertia of joint JOINT (kg m^2 about a revolute axis, kg along a "
-                   "prismatic one), added to M's diagonal; JOINT all: every revolute, prismatic "
-                   "and planar joint, before the others given (repeatable)")
+                   "rotor inertia of joint JOINT (kg m^2 about a revolute axis or each of a ball "
+                   "joint's, kg along a prismatic one), added to M's diagonal; JOINT all: every "
+                   "revolute, prismatic, planar and ball joint, before the others given "
+                   "(repeatable)")
         ->type_name("JOINT=VALUE");
     app.add_flag("--mimic-independent", mimic_independent,
                  "accept URDF mimic joints as independent joints (by default they are refused)");

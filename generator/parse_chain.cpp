@@ -118,11 +118,14 @@ RobotDescription parse_document(const std::string& path, const std::string& text
         if (type == "revolute" || type == "continuous") joint.kind = JointKind::Revolute;
         else if (type == "prismatic") joint.kind = JointKind::Prismatic;
         else if (type == "fixed") joint.kind = JointKind::Fixed;
+        else if (type == "ball") joint.kind = JointKind::Ball;
         else
           r.fail(j["type"], jat + ".type",
                  fmt::format("joint type '{}' is not supported (revolute, continuous, prismatic, "
-                             "fixed)",
+                             "ball, fixed)",
                              type));
+        if (joint.kind == JointKind::Ball && j["axis"])
+          r.fail(j["axis"], jat + ".axis", "a ball joint turns about every axis: it takes none");
       }
       if (j["axis"]) joint.axis = r.vec3(j["axis"], jat + ".axis");
       if (j["armature"]) joint.armature = r.number(j["armature"], jat + ".armature");

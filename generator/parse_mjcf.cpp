@@ -274,20 +274,20 @@ void add_joints(const std::string& path, const mjModel* m, int b, const std::str
       link = spec.child;
       continue;
     }
-    if (m->jnt_type[j] == mjJNT_BALL)
-      throw InputError(fmt::format("{}: joint '{}' of body '{}' is a ball joint, which dyngen "
-                                   "does not model yet",
-                                   path, joint, body));
+    const bool ball = m->jnt_type[j] == mjJNT_BALL;
     const Vec3<double> p{m->jnt_pos[3 * j], m->jnt_pos[3 * j + 1], m->jnt_pos[3 * j + 2]};
     const Vec3<double> k{m->jnt_axis[3 * j], m->jnt_axis[3 * j + 1], m->jnt_axis[3 * j + 2]};
-    const double ref = m->qpos0[m->jnt_qposadr[j]];
     const bool first = j == m->body_jntadr[b];
-    spec.kind = m->jnt_type[j] == mjJNT_HINGE ? JointKind::Revolute : JointKind::Prismatic;
+    spec.kind = ball                            ? JointKind::Ball
+                : m->jnt_type[j] == mjJNT_HINGE ? JointKind::Revolute
+                                                : JointKind::Prismatic;
     spec.axis = k;
     spec.xyz = first ? pos + mul(R, p) : p - anchor;
     spec.R = first ? R : Mat3<double>{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    // a ball's reference is the identity quaternion, a hinge's or slide's ref is baked in
+    const double ref = ball ? 0 : m->qpos0[m->jnt_qposadr[j]];
     if (spec.kind == JointKind::Revolute) spec.R = mul(spec.R, axis_rotation(k, -ref));
-    else spec.xyz = spec.xyz - mul(spec.R, scale(k, ref));
+    if (spec.kind == JointKind::Prismatic) spec.xyz = spec.xyz - mul(spec.R, scale(k, ref));
     spec.armature = m->dof_armature[m->jnt_dofadr[j]];
     builder.add_link(massless(spec.child));
     builder.add_joint(spec);

@@ -24,9 +24,9 @@ std::map<std::string, std::vector<T>> sample_state(const Model<double>& model, b
                x_range = extreme ? 1e4 : 100;
   std::vector<double> q = rng.vector(model.nq, -q_range, q_range);
   for (int i = 0; i < model.nbodies; ++i)
-    if (model.joint_type[i] == JointType::Free) {
+    if (const int o = quaternion_offset(model.joint_type[i]); o >= 0) {
       const std::vector<double> w = numerics::random_unit_quaternion(rng);
-      std::copy(w.begin(), w.end(), q.begin() + model.q_index[i] + 3);
+      std::copy(w.begin(), w.end(), q.begin() + model.q_index[i] + o);
     }
   std::map<std::string, std::vector<T>> state;
   auto set = [&](const char* name, const std::vector<double>& x) {

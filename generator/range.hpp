@@ -11,7 +11,7 @@ namespace dyngen::gen {
 /// The states of the estimate are those the generated check draws (templates/check.cpp.in):
 /// typical ones, q within +-3.2 (rad, or m for prismatic joints and free positions), v within
 /// +-10 and a and tau within +-100, and extreme ones, q within +-1e6, v within +-1e3 and a and
-/// tau within +-1e4; free joints' quaternions of unit length. This many of each kind.
+/// tau within +-1e4; free and ball joints' quaternions of unit length. This many of each kind.
 inline constexpr int range_samples = 8;
 
 /// What the values reach at one kind of state.

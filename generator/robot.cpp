@@ -89,8 +89,8 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
   for (int sample = 0; sample < 16; ++sample) {
     for (double& x : q) x = sample == 0 ? 0.0 : angle();
     for (int i = 0; i < model.nbodies; ++i)
-      if (model.joint_type[i] == JointType::Free) {  // the identity rotation: any will do
-        double* quaternion = &q[model.q_index[i] + 3];
+      if (const int o = quaternion_offset(model.joint_type[i]); o >= 0) {  // any rotation will do
+        double* quaternion = &q[model.q_index[i] + o];
         quaternion[0] = 1, quaternion[1] = quaternion[2] = quaternion[3] = 0;
       }
     aba<double>(model, ws, q, v, tau, qdd);
@@ -106,6 +106,17 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
         // without moving the free body (a massless root above a prismatic joint, say)
         const double lambda = numerics::detail::smallest_eigenvalue(ws.IA[i]);
         if (!std::isnan(lambda) && !(lambda > 1e-12 * numerics::detail::max_abs(ws.IA[i])))
+          flagged[i] = true;
+        continue;
+      }
+      if (model.joint_type[i] == JointType::Ball) {
+        // ABA inverts the 3x3 angular block: singular when the subtree can turn about some
+        // axis through the joint without inertia
+        const Sym3<double> D = detail::ball_D(model, ws.IA[i], model.v_index[i]);
+        const double lambda = numerics::detail::smallest_eigenvalue(D);
+        const double size = std::max({std::abs(D.xx), std::abs(D.yy), std::abs(D.zz)});
+        if (!std::isnan(lambda) &&
+            !(lambda > 1e-12 * size && lambda >= std::numeric_limits<double>::min()))
           flagged[i] = true;
         continue;
       }

@@ -62,7 +62,8 @@ struct Invariants {
 
 inline Invariants invariants(const System& system, dyngen::Workspace<double>& ws, const State& x) {
   dyngen::forward_kinematics<double>(system.model, ws, x.q, x.v);
-  return {dyngen::kinetic_energy(system.model, ws) + dyngen::potential_energy(system.model, ws),
+  return {dyngen::kinetic_energy<double>(system.model, ws, x.v) +
+              dyngen::potential_energy(system.model, ws),
           dyngen::momentum(system.model, ws)};
 }
 
@@ -96,8 +97,8 @@ inline State initial_state(const dyngen::Model<double>& model) {
   for (int k = 0; k < model.nq; ++k) x.q[k] = std::sin(1.3 * k + 0.4);
   for (int k = 0; k < model.nv; ++k) x.v[k] = std::cos(0.7 * k + 0.2);
   for (int i = 0; i < model.nbodies; ++i)
-    if (model.joint_type[i] == dyngen::JointType::Free) {
-      double* w = &x.q[model.q_index[i] + 3];
+    if (const int o = dyngen::quaternion_offset(model.joint_type[i]); o >= 0) {
+      double* w = &x.q[model.q_index[i] + o];
       const double c = std::cos(0.6), s = std::sin(0.6) / std::sqrt(3.0);
       w[0] = c, w[1] = s, w[2] = -s, w[3] = s;
     }

@@ -82,8 +82,8 @@ const std::vector<Case> bad_robots = {
     {"MalformedXmlInXml", bad + "/malformed.xml", {},
      {"malformed.xml:5:", "malformed XML", "link"}},
     {"MjcfWithoutJoints", bad + "/mjcf.xml", {}, {"mjcf.xml: the robot has no moving joint"}},
-    {"MjcfBallJoint", bad + "/mjcf_ball.xml", {},
-     {"mjcf_ball.xml: joint 'shoulder' of body 'arm' is a ball joint"}},
+    {"MjcfTurnAfterBall", bad + "/mjcf_turn_after_ball.xml", {},
+     {"mjcf_turn_after_ball.xml: MuJoCo's compiler:", "ball followed by rotation in body 'arm'"}},
     {"MjcfNestedFreeJoint", bad + "/mjcf_nested_free.xml", {},
      {"mjcf_nested_free.xml: MuJoCo's compiler:", "free joint"}},
     {"MjcfEquality", bad + "/mjcf_equality.xml", {},
@@ -231,8 +231,8 @@ const std::vector<Case> bad_options = {
     {"ArmatureNegative", models + "/ur5.urdf", {"--armature", "all=-0.1"},
      {"ur5.urdf: joint 'shoulder_pan_joint': the armature -0.1 kg m^2 is negative"}},
     {"ArmatureOnAFixedJoint", models + "/ur5.urdf", {"--armature", "ee_fixed_joint=0.1"},
-     {"joint 'ee_fixed_joint' is fixed: only a revolute, prismatic or planar joint has an "
-      "armature"}},
+     {"joint 'ee_fixed_joint' is fixed: only a revolute, prismatic, planar or ball joint has "
+      "an armature"}},
     {"GravityAndNoGravity", models + "/ur5.urdf", {"--gravity", "0,0,1", "--no-gravity"},
      {"--gravity excludes --no-gravity"}},
     {"GravityOverflowing", models + "/ur5.urdf", {"--gravity", "0,0,1e308"},

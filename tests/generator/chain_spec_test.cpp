@@ -211,8 +211,34 @@ TEST_F(ChainSpec, ArmatureIsTheJointsRotorInertia) {
             "'link2_joint'");
   EXPECT_NE(error("links:\n  - {mass: 1, joint: {type: fixed, armature: 0.1}}\n"
                   "  - {mass: 1}\n")
-                .find("joint 'link1_joint' is fixed: only a revolute, prismatic or planar joint "
-                      "has an armature"),
+                .find("joint 'link1_joint' is fixed: only a revolute, prismatic, planar or ball "
+                      "joint has an armature"),
+            std::string::npos);
+}
+
+// A ball joint has a quaternion in q and three rates in v, names its rates like a free joint's
+// angular ones, and takes no axis; one whose subtree's inertia cannot turn it is refused, like
+// a massless revolute joint.
+TEST_F(ChainSpec, BallJointsTakeAQuaternionAndThreeRates) {
+  const Robot robot = load("links:\n"
+                           "  - {mass: 1, length: 1, com: [0.5, 0, 0], joint: {type: ball}}\n"
+                           "  - {mass: 1, inertia: {ixx: 0.1, iyy: 0.1, izz: 0.1},\n"
+                           "     joint: {name: wrist, type: ball, armature: 0.3}}\n");
+  EXPECT_EQ(robot.model.nq, 8);
+  EXPECT_EQ(robot.model.nv, 6);
+  EXPECT_EQ(robot.model.armature, (std::vector<double>{0, 0, 0, 0.3, 0.3, 0.3}));
+  EXPECT_EQ(velocity_names(robot.model),
+            (std::vector<std::string>{"link1_joint:wx", "link1_joint:wy", "link1_joint:wz",
+                                      "wrist:wx", "wrist:wy", "wrist:wz"}));
+  EXPECT_TRUE(joints_blocking_aba(robot.model).empty());
+  // a point mass on its own ball joint cannot be turned about any axis through it
+  const Model<double> point = load("links:\n"
+                                   "  - {mass: 1, length: 1, com: [0.5, 0, 0]}\n"
+                                   "  - {mass: 1, joint: {type: ball}}\n")
+                                  .model;
+  EXPECT_EQ(joint_list(point, joints_blocking_aba(point)), "'link2_joint'");
+  EXPECT_NE(error("links:\n  - {mass: 1, joint: {type: ball, axis: [0, 0, 1]}}\n")
+                .find("links[0].joint.axis: a ball joint turns about every axis: it takes none"),
             std::string::npos);
 }
 

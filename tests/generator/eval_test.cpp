@@ -80,13 +80,13 @@ Eigen::MatrixXd mat(const json& rows) {
   return M;
 }
 
-/// A state of the model's sizes: q with unit quaternions at free joints, v, and a or tau.
+/// A state of the model's sizes: q with unit quaternions at free and ball joints, v, and a or tau.
 json state(const dyngen::Model<double>& model, int seed, const char* third) {
   std::vector<double> q, v, x;
   for (int k = 0; k < model.nq; ++k) q.push_back(std::sin(1.7 * k + seed));
   for (int i = 0; i < model.nbodies; ++i)
-    if (model.joint_type[i] == dyngen::JointType::Free) {
-      double* w = &q[model.q_index[i] + 3];
+    if (const int o = dyngen::quaternion_offset(model.joint_type[i]); o >= 0) {
+      double* w = &q[model.q_index[i] + o];
       const double norm = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2] + w[3] * w[3]);
       for (int k = 0; k < 4; ++k) w[k] /= norm;
     }
@@ -138,10 +138,13 @@ INSTANTIATE_TEST_SUITE_P(Robots, Eval,
                          ::testing::Values(EvalCase{"ur5.urdf", false},
                                            EvalCase{"ur5.urdf", true},
                                            EvalCase{"solo12.urdf", true},
-                                           EvalCase{"planar5.yaml", false}),
+                                           EvalCase{"planar5.yaml", false},
+                                           EvalCase{"coverage/ball_chain.yaml", true}),
                          [](const auto& info) {
-                           const std::string& r = info.param.robot;
-                           return r.substr(0, r.find('.')) + (info.param.floating ? "_floating" : "");
+                           const std::string file = info.param.robot.substr(
+                               info.param.robot.find('/') + 1);  // npos + 1 = 0
+                           return file.substr(0, file.find('.')) +
+                                  (info.param.floating ? "_floating" : "");
                          });
 
 TEST(Eval, FloatingBaseNamesItsVelocityEntries) {
@@ -192,6 +195,10 @@ TEST(Eval, BadStatesNameTheFileStateAndField) {
   EXPECT_EQ(error_of(floating, R"([{"q": [0, 0, 0, 0.5, 0, 0, 0, 0, 0, 0, 0, 0, 0]}])"),
             "<test>: state 0, field \"q\"[3..6]: the quaternion (w, x, y, z) of free joint "
             "'floating_base' has length 0.5; it must be a unit quaternion");
+  const dyngen::Model<double> ball = load_robot(models + "/coverage/ball_chain.yaml").model;
+  EXPECT_EQ(error_of(ball, R"([{"q": [1, 0, 0, 0, 0, 0, 0, 0, 2, 1, 0, 0, 0]}])"),
+            "<test>: state 0, field \"q\"[5..8]: the quaternion (w, x, y, z) of ball joint "
+            "'wrist' has length 2; it must be a unit quaternion");
 }
 
 // 1e400 and its kin overflow double as JSON is read: bad input, named like any other

@@ -1,6 +1,7 @@
 // The derivatives in double against the truth: central differences of the runtime's own rnea and
 // aba on MPFR numbers (reference_bits, at least 256), with a step of 2^-60 along
-// dyngen::integrate and v, which leaves them exact to about 1e-36, on shared and stiff robots.
+// dyngen::integrate and v, which leaves them exact to about 1e-36, on shared and stiff robots
+// and on ball joints (whose columns, like a free joint's, are tangent directions).
 // Errors are norm-wise relative (Frobenius) and printed on lines starting with "measured".
 #include <gtest/gtest.h>
 
@@ -30,6 +31,7 @@ const std::vector<Robot> robots = {
     {"solo12.urdf", true},        {"atlas.urdf", true},
     {"stiff/alternating20.yaml", false}, {"stiff/thin_rods12.yaml", false},
     {"stiff/light_limbs.urdf", true},    {"stiff/tapered50_0p9.yaml", false},
+    {"coverage/ball_chain.yaml", true},  {"mjcf/ball.xml", false},
 };
 
 /// Columns of d f / dq (along integrate) and d f / dv by central differences in MPFR.

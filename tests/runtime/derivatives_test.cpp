@@ -24,30 +24,33 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 
 /// q moved along tangent direction c to first order, as a dual number: a revolute or prismatic
 /// entry by e, a free joint's pose M by M exp(e d) with d its c-th column (linear then angular,
-/// body frame), so position p + e R d_lin and quaternion q (x) (1, e d_ang / 2).
+/// body frame), so position p + e R d_lin and quaternion q (x) (1, e d_ang / 2); a ball joint's
+/// quaternion alike.
 std::vector<D> tangent(const Model<double>& model, const std::vector<double>& q, int c) {
   std::vector<D> x;
   for (const double qi : q) x.emplace_back(qi, 0.0);
   for (int i = 0; i < model.nbodies; ++i) {
     const int k = model.v_index[i], qk = model.q_index[i];
     if (c < k || c >= k + joint_nv(model.joint_type[i])) continue;
-    if (model.joint_type[i] != JointType::Free) {
+    const int o = quaternion_offset(model.joint_type[i]);
+    if (o < 0) {
       x[qk].dx = 1;
       continue;
     }
-    const double* w = &q[qk + 3];
+    const double* w = &q[qk + o];
     const Mat3<double> R = quaternion_rotation(w[0], w[1], w[2], w[3]);
-    if (c - k < 3) {
+    if (c - k < o) {
       const double d[3] = {c - k == 0 ? 1.0 : 0.0, c - k == 1 ? 1.0 : 0.0, c - k == 2 ? 1.0 : 0.0};
       const Vec3<double> Rd = mul(R, Vec3<double>{d[0], d[1], d[2]});
       x[qk].dx = Rd.x, x[qk + 1].dx = Rd.y, x[qk + 2].dx = Rd.z;
     } else {
       // (w, v) (x) (1, u/2): dw = -v.u / 2, dv = (w u + v x u) / 2
-      const Vec3<double> u{c - k == 3 ? 1.0 : 0.0, c - k == 4 ? 1.0 : 0.0, c - k == 5 ? 1.0 : 0.0};
+      const int a = c - k - o;  // the angular column
+      const Vec3<double> u{a == 0 ? 1.0 : 0.0, a == 1 ? 1.0 : 0.0, a == 2 ? 1.0 : 0.0};
       const Vec3<double> v{w[1], w[2], w[3]};
       const Vec3<double> dv = scale(scale(u, w[0]) + cross(v, u), 0.5);
-      x[qk + 3].dx = -0.5 * dot(v, u);
-      x[qk + 4].dx = dv.x, x[qk + 5].dx = dv.y, x[qk + 6].dx = dv.z;
+      x[qk + o].dx = -0.5 * dot(v, u);
+      x[qk + o + 1].dx = dv.x, x[qk + o + 2].dx = dv.y, x[qk + o + 3].dx = dv.z;
     }
   }
   return x;
@@ -75,6 +78,13 @@ std::vector<Case> cases() {
   all.push_back({"all_joints", [] {
                    return gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
                  }});
+  for (const bool floating : {false, true})
+    all.push_back({floating ? "ball_chain_floating" : "ball_chain", [=] {
+                     gen::LoadOptions options;
+                     options.floating_base = floating;
+                     return gen::load_robot(test::model_path("coverage/ball_chain.yaml"), options)
+                         .model;
+                   }});
   for (const test::RobotFile& robot : test::robot_files()) {
     all.push_back({robot.name, [=] { return test::load_for_aba(robot); }});
     all.push_back({robot.name + "_floating", [=] { return test::load_for_aba(robot, true); }});

@@ -260,7 +260,8 @@ void expect_axis_kinds(const Model<double>& model, const std::string& name) {
       case JointType::RevoluteZ: EXPECT_TRUE(z && std::abs(k.z) == 1) << name; break;
       case JointType::Revolute: EXPECT_FALSE(x || y || z) << name; break;
       case JointType::Prismatic:
-      case JointType::Free: break;
+      case JointType::Free:
+      case JointType::Ball: break;
     }
   }
 }
@@ -512,7 +513,7 @@ TEST(ModelBuilder, Errors) {
         b.add_joint(joint("weld", JointKind::Fixed, "a", "d", {}, rpy(0, 0, 0), {1, 0, 0}));
         b.set_armature("weld", 0.1);
       },
-      "joint 'weld' is fixed: only a revolute, prismatic or planar joint has an armature");
+      "joint 'weld' is fixed: only a revolute, prismatic, planar or ball joint has an armature");
   // an all-zero or mirrored origin "rotation" would silently build a wrong model
   for (const Mat3<double>& R : {Mat3<double>{}, Mat3<double>{-1, 0, 0, 0, 1, 0, 0, 0, 1}})
     expect_model_error(

@@ -35,7 +35,7 @@ class Energy {
       : model_(model), R_(model.nbodies), p_(model.nbodies), w_(model.nbodies), v_(model.nbodies) {}
 
   /// Sum over bodies of 1/2 v_i^T I_i v_i, written with (m, h, I) in body coordinates:
-  /// 1/2 (w . I w + 2 v . (w x h) + m v . v).
+  /// 1/2 (w . I w + 2 v . (w x h) + m v . v), and over degrees of freedom of 1/2 armature qd^2.
   double kinetic(const Vector& q, const Vector& qd) {
     kinematics(q, qd);
     double T = 0;
@@ -43,6 +43,11 @@ class Energy {
       const RigidInertia<double>& I = model_.I[i];
       const Vector3 w = R_[i].transpose() * w_[i], v = R_[i].transpose() * v_[i];
       T += 0.5 * (w.dot(dense(I.I) * w) + 2 * v.dot(w.cross(dense(I.h))) + I.m * v.dot(v));
+    }
+    // the rotors', spinning at their joint's rate
+    for (std::size_t k = 0; k < model_.armature.size(); ++k) {
+      const double rate = qd[static_cast<Eigen::Index>(k)];
+      T += 0.5 * model_.armature[k] * rate * rate;
     }
     return T;
   }
@@ -96,6 +101,9 @@ std::vector<Case> cases() {
   all.push_back({"all_joints", [] {
                    return gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
                  }});
+  all.push_back({"ball_chain", [] {
+                   return gen::load_robot(test::model_path("coverage/ball_chain.yaml")).model;
+                 }});
   all.push_back({"planar_chain_12", [] { return test::make_random_chain(12, 31, true); }});
   all.push_back({"spatial_chain_12", [] { return test::make_random_chain(12, 32, false); }});
   return all;
@@ -141,7 +149,7 @@ TEST_P(Physics, RuntimeEnergiesMatchWorldKinematics) {
   for (int k = 0; k < 20; ++k) {
     const test::State s = test::random_state(model, rng);
     forward_kinematics<double>(model, ws, s.q, s.qd);
-    const double T = kinetic_energy(model, ws), V = potential_energy(model, ws);
+    const double T = kinetic_energy<double>(model, ws, s.qd), V = potential_energy(model, ws);
     const double T_ref = energy.kinetic(test::to_eigen(s.q), test::to_eigen(s.qd));
     const double V_ref = energy.potential(test::to_eigen(s.q));
     worst = std::max(worst, (std::abs(T - T_ref) + std::abs(V - V_ref)) /

@@ -9,8 +9,53 @@
 
 namespace dyngen {
 
+namespace detail {
+
+/// u = tau - S^T pA of a ball joint (S = [1; 0]); recomputed where needed, since pA_i is final
+/// once the articulated inertia pass has left body i.
+template <class S>
+Vec3<S> ball_u(const Force<S>& pA, const S* tau) {
+  return Vec3<S>{tau[0], tau[1], tau[2]} - pA.ang;
+}
+
+/// D = S^T IA S (+ the armature) of a ball joint whose first column is k: IA's angular block
+template <class S>
+Sym3<S> ball_D(const Model<S>& model, const ArticulatedInertia<S>& IA, int k) {
+  if (model.armature.empty()) return IA.I;
+  return IA.I + Sym3<S>{model.armature[k], model.armature[k + 1], model.armature[k + 2]};
+}
+
+/// The articulated inertia pass at a ball joint, whose three columns take IA's angular ones:
+/// U = [I; H^T], D = I (+ the armature), Ia = IA - U D^-1 U^T, pa = pA + Ia c + U D^-1 u.
+template <class S>
+void ball_articulated(const Model<S>& model, Workspace<S>& ws, std::span<const S> tau, int i) {
+  const int k = model.v_index[i];
+  const int p = model.parent[i];
+  const ArticulatedInertia<S>& IA = ws.IA[i];
+  ws.Dinv_ball[i] = inverse(ball_D(model, IA, k));
+  if (p < 0) return;
+  const ArticulatedInertia<S> Ia = downdate_ball(IA, ws.Dinv_ball[i], !model.armature.empty());
+  const Vec3<S> y = mul(ws.Dinv_ball[i], ball_u(ws.pA[i], &tau[k]));
+  const Force<S> pa = ws.pA[i] + mul(Ia, ws.c[i]) + Force<S>{mul(IA.I, y), mul_T(IA.H, y)};
+  ws.IA[p] = ws.IA[p] + apply_inertia_T(ws.Xup[i], Ia);
+  ws.pA[p] = ws.pA[p] + apply_force_T(ws.Xup[i], pa);
+}
+
+/// qdd = D^-1 (u - U^T a') at a ball joint, with U^T a' = I a'_ang + H a'_lin; returns S qdd.
+template <class S>
+Motion<S> ball_acceleration(const Workspace<S>& ws, int i, const Vec3<S>& u, const Motion<S>& a1,
+                            S* qdd) {
+  const ArticulatedInertia<S>& IA = ws.IA[i];
+  const Vec3<S> w = mul(ws.Dinv_ball[i], u - (mul(IA.I, a1.ang) + mul(IA.H, a1.lin)));
+  qdd[0] = w.x, qdd[1] = w.y, qdd[2] = w.z;
+  return {w, {}};
+}
+
+}  // namespace detail
+
 /// Forward dynamics: qdd = M(q)^-1 (tau - C(q, qd) qd - g(q)). Requires every joint to move
-/// some inertia (D_i > 0, and a positive definite articulated inertia below a free joint); the
+/// some inertia (D_i > 0, and a positive definite articulated inertia below a free joint, and
+/// its angular block below a ball joint); the
 /// algorithm has no branch on values and divides by D_i. q has model.nq entries, the others
 /// model.nv; no allocation.
 template <class S>
@@ -55,6 +100,10 @@ void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
       if (p >= 0) ws.pA[p] = ws.pA[p] + apply_force_T(ws.Xup[i], joint_force(model, i, &tau[k]));
       continue;
     }
+    if (model.joint_type[i] == JointType::Ball) {
+      detail::ball_articulated(model, ws, tau, i);
+      continue;
+    }
     ws.U[i] = mul(ws.IA[i], joint_column(model, i, 0));
     joint_project(model, i, ws.U[i], &ws.D[i]);
     if (!model.armature.empty()) ws.D[i] = ws.D[i] + model.armature[k];
@@ -86,6 +135,11 @@ void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
       const Motion<S> aJ = ws.a[i] - a1;
       qdd[k] = aJ.lin.x, qdd[k + 1] = aJ.lin.y, qdd[k + 2] = aJ.lin.z;
       qdd[k + 3] = aJ.ang.x, qdd[k + 4] = aJ.ang.y, qdd[k + 5] = aJ.ang.z;
+      continue;
+    }
+    if (model.joint_type[i] == JointType::Ball) {
+      const Vec3<S> u = detail::ball_u(ws.pA[i], &tau[k]);
+      ws.a[i] = a1 + detail::ball_acceleration(ws, i, u, a1, &qdd[k]);
       continue;
     }
     const Force<S>& U = ws.U[i];

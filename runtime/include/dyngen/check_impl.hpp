@@ -57,7 +57,7 @@ Arrays<S> sized(const Model<S>& model, const std::vector<ArraySpec>& arrays,
 }
 
 /// The inputs of `spec` for state number s: q, v and the other arrays (a, tau) random within
-/// their ranges, a free joint's quaternion a unit one.
+/// their ranges, a free or ball joint's quaternion a unit one.
 template <class S>
 Arrays<S> make_inputs(const Model<S>& model, const AlgorithmSpec<S>& spec, States states, int s) {
   std::mt19937_64 rng(0x64796e67656e + static_cast<std::uint64_t>(s));
@@ -74,8 +74,9 @@ Arrays<S> make_inputs(const Model<S>& model, const AlgorithmSpec<S>& spec, State
     // the algorithms assume a unit quaternion: a huge one would overflow, and the contract
     // holds for computations that stay finite
     for (int i = 0; i < model.nbodies; ++i) {
-      if (model.joint_type[i] != JointType::Free) continue;
-      S* w = &x[k][model.q_index[i] + 3];
+      const int o = quaternion_offset(model.joint_type[i]);
+      if (o < 0) continue;
+      S* w = &x[k][model.q_index[i] + o];
       const double w0 = uniform(rng, -1, 1), w1 = uniform(rng, -1, 1), w2 = uniform(rng, -1, 1),
                    w3 = uniform(rng, -1, 1);
       const double norm = std::sqrt(w0 * w0 + w1 * w1 + w2 * w2 + w3 * w3);

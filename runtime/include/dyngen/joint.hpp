@@ -81,6 +81,9 @@ Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
       const Mat3<S> RT = transpose(quaternion_rotation(qi[3], qi[4], qi[5], qi[6]));
       return {mul(RT, T), Xt.r + mul_T(T, p)};
     }
+    case JointType::Ball:
+      // XJ = rot(R^T): the free joint's rotation about the joint origin
+      return {mul(transpose(quaternion_rotation(qi[0], qi[1], qi[2], qi[3])), T), Xt.r};
   }
   return Xt;
 }
@@ -90,6 +93,7 @@ template <class S>
 Motion<S> joint_motion(const Model<S>& model, int i, const S* qd) {
   if (model.joint_type[i] == JointType::Free)
     return {{qd[3], qd[4], qd[5]}, {qd[0], qd[1], qd[2]}};
+  if (model.joint_type[i] == JointType::Ball) return {{qd[0], qd[1], qd[2]}, {}};
   const Vec3<S> w = scale(model.joint_axis[i], qd[0]);
   if (is_revolute(model.joint_type[i])) return {w, {}};
   return {{}, w};
@@ -116,6 +120,9 @@ void joint_project(const Model<S>& model, int i, const Force<S>& f, S* out) {
     case JointType::Free:
       out[0] = f.lin.x, out[1] = f.lin.y, out[2] = f.lin.z;
       out[3] = f.ang.x, out[4] = f.ang.y, out[5] = f.ang.z;
+      return;
+    case JointType::Ball:
+      out[0] = f.ang.x, out[1] = f.ang.y, out[2] = f.ang.z;
       return;
     case JointType::Prismatic:
       out[0] = dot(model.joint_axis[i], f.lin);

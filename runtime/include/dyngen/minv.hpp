@@ -7,11 +7,45 @@
 #include <cstddef>
 #include <span>
 
+#include "dyngen/aba.hpp"
 #include "dyngen/joint.hpp"
 #include "dyngen/trace_hook.hpp"
 #include "dyngen/workspace.hpp"
 
 namespace dyngen {
+
+namespace detail {
+
+/// u = e_c - S^T pA_i of a ball joint at body i (first column k) for column c of M^-1: zero
+/// outside the subtree's columns
+template <class S>
+Vec3<S> ball_minv_u(const Model<S>& model, const Workspace<S>& ws, int i, int c) {
+  if (c >= ws.subtree_end[i]) return {};
+  const int k = model.v_index[i];
+  S e[3]{};
+  if (c < k + 3) e[c - k] = S(1);
+  return ball_u(ws.pA_columns[row_major(model.nv, i, c)], e);
+}
+
+/// aba's ball_articulated with tau = e_c at zero velocity and gravity, for each column c of the
+/// subtree: pA_p += Xup^T (pA_i + U D^-1 u)
+template <class S>
+void ball_minv_articulated(const Model<S>& model, Workspace<S>& ws, int i) {
+  const int n = model.nv, k = model.v_index[i], p = model.parent[i];
+  const ArticulatedInertia<S>& IA = ws.IA[i];
+  ws.Dinv_ball[i] = inverse(ball_D(model, IA, k));
+  if (p < 0) return;
+  for (int c = k; c < ws.subtree_end[i]; ++c) {
+    const Vec3<S> y = mul(ws.Dinv_ball[i], ball_minv_u(model, ws, i, c));
+    const Force<S> pa = ws.pA_columns[row_major(n, i, c)] + Force<S>{mul(IA.I, y), mul_T(IA.H, y)};
+    ws.pA_columns[row_major(n, p, c)] =
+        ws.pA_columns[row_major(n, p, c)] + apply_force_T(ws.Xup[i], pa);
+  }
+  const bool armature = !model.armature.empty();
+  ws.IA[p] = ws.IA[p] + apply_inertia_T(ws.Xup[i], downdate_ball(IA, ws.Dinv_ball[i], armature));
+}
+
+}  // namespace detail
 
 /// M(q)^-1, row-major nv x nv, both triangles (the upper one computed, the lower copied). The
 /// same preconditions as aba: every joint moves some inertia. Needs the workspace's matrix
@@ -45,6 +79,10 @@ void minv(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
         ws.pA_columns[at(p, k + d)] =
             ws.pA_columns[at(p, k + d)] + apply_force_T(ws.Xup[i], joint_force(model, i, e));
       }
+      continue;
+    }
+    if (model.joint_type[i] == JointType::Ball) {
+      detail::ball_minv_articulated(model, ws, i);
       continue;
     }
     ws.U[i] = mul(ws.IA[i], joint_column(model, i, 0));
@@ -87,6 +125,14 @@ void minv(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
         const S column[6] = {aJ.lin.x, aJ.lin.y, aJ.lin.z, aJ.ang.x, aJ.ang.y, aJ.ang.z};
         for (int d = 0; d < dofs; ++d)
           if (c >= k + d) Minv[at(k + d, c)] = column[d];
+        continue;
+      }
+      if (model.joint_type[i] == JointType::Ball) {
+        S qdd[3];
+        ws.a_columns[at(i, c)] =
+            a1 + detail::ball_acceleration(ws, i, detail::ball_minv_u(model, ws, i, c), a1, qdd);
+        for (int d = 0; d < dofs; ++d)
+          if (c >= k + d) Minv[at(k + d, c)] = qdd[d];
         continue;
       }
       // u_i is zero outside the subtree's columns

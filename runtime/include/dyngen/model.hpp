@@ -1,5 +1,5 @@
 // The immutable robot model: bodies in topological order (parent[i] < i), one joint per body
-// (1-DoF, or a 6-DoF free joint), structure-of-arrays like MuJoCo's mjModel.
+// (1-DoF, a 3-DoF ball or a 6-DoF free joint), structure-of-arrays like MuJoCo's mjModel.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +21,13 @@ namespace dyngen {
 /// both in child coordinates; accelerations are their time derivatives, and tau is
 /// [fx, fy, fz, nx, ny, nz], the force and the moment about the child origin, in child
 /// coordinates.
-enum class JointType : std::uint8_t { RevoluteX, RevoluteY, RevoluteZ, Revolute, Prismatic, Free };
+///
+/// Ball: a 3-DoF spherical joint. Its 4 q entries are the unit quaternion [qw, qx, qy, qz] of the
+/// child's orientation in the parent (the free joint's last four); its 3 v entries the angular
+/// velocity [wx, wy, wz] in child coordinates, and tau the moment [nx, ny, nz] there.
+enum class JointType : std::uint8_t {
+  RevoluteX, RevoluteY, RevoluteZ, Revolute, Prismatic, Free, Ball
+};
 
 inline const char* joint_type_name(JointType t) {
   switch (t) {
@@ -31,17 +37,24 @@ inline const char* joint_type_name(JointType t) {
     case JointType::Revolute: return "Revolute";
     case JointType::Prismatic: return "Prismatic";
     case JointType::Free: return "Free";
+    case JointType::Ball: return "Ball";
   }
   return "?";
 }
 
-inline bool is_revolute(JointType t) { return t != JointType::Prismatic && t != JointType::Free; }
+/// A 1-DoF rotation about an axis (not a ball joint's three).
+inline bool is_revolute(JointType t) { return t <= JointType::Revolute; }
 
 /// Entries of the joint in q.
-inline int joint_nq(JointType t) { return t == JointType::Free ? 7 : 1; }
+inline int joint_nq(JointType t) { return t == JointType::Free ? 7 : t == JointType::Ball ? 4 : 1; }
 
 /// Entries of the joint in v, a, tau and the rows of M.
-inline int joint_nv(JointType t) { return t == JointType::Free ? 6 : 1; }
+inline int joint_nv(JointType t) { return t == JointType::Free ? 6 : t == JointType::Ball ? 3 : 1; }
+
+/// Where the joint's unit quaternion (w, x, y, z) starts among its q entries; -1 if it has none.
+inline int quaternion_offset(JointType t) {
+  return t == JointType::Free ? 3 : t == JointType::Ball ? 0 : -1;
+}
 
 /// A named frame fixed to a body: every URDF link is one, on its own body or, when a fixed joint
 /// merged it, on the body it merged into (a tool flange, a foot, a sensor).
@@ -117,17 +130,19 @@ struct Model {
 };
 
 /// The name of each entry of v (and of a, tau and the rows of M): the joint's name, or for a
-/// free joint its name followed by :vx, :vy, :vz, :wx, :wy, :wz.
+/// free joint its name followed by :vx, :vy, :vz, :wx, :wy, :wz (a ball joint: :wx, :wy, :wz).
 template <class S>
 std::vector<std::string> velocity_names(const Model<S>& model) {
+  static constexpr const char* suffixes[] = {":vx", ":vy", ":vz", ":wx", ":wy", ":wz"};
   std::vector<std::string> names;
   for (int i = 0; i < model.nbodies; ++i) {
-    if (model.joint_type[i] != JointType::Free) {
+    const JointType t = model.joint_type[i];
+    if (t != JointType::Free && t != JointType::Ball) {
       names.push_back(model.joint_name[i]);
       continue;
     }
-    for (const char* suffix : {":vx", ":vy", ":vz", ":wx", ":wy", ":wz"})
-      names.push_back(model.joint_name[i] + suffix);
+    for (int d = t == JointType::Ball ? 3 : 0; d < 6; ++d)
+      names.push_back(model.joint_name[i] + suffixes[d]);
   }
   return names;
 }

@@ -34,7 +34,8 @@ struct LinkSpec {
 /// Floating: a 6-DoF free joint (JointType::Free). Planar: motion in the plane normal to the
 /// axis, built as a prismatic joint along one in-plane direction u, one along w = axis x u and
 /// a revolute joint about the axis, the first two on massless bodies named after the joint.
-enum class JointKind { Revolute, Prismatic, Fixed, Floating, Planar };
+/// Ball: a 3-DoF spherical joint about the child frame's origin (JointType::Ball).
+enum class JointKind { Revolute, Prismatic, Fixed, Floating, Planar, Ball };
 
 /// A joint: the child frame sits at xyz in the parent frame, rotated by R (columns: child axes
 /// in parent coordinates); the axis is in child coordinates.
@@ -46,7 +47,7 @@ struct JointSpec {
   Mat3<double> R{1, 0, 0, 0, 1, 0, 0, 0, 1};
   Vec3<double> axis{1, 0, 0};
   /// Rotor inertia (MuJoCo's armature) of each of the joint's degrees of freedom, kg m^2 about a
-  /// revolute axis, kg along a prismatic one; a free joint has none.
+  /// revolute axis (each axis of a ball joint), kg along a prismatic one; a free joint has none.
   double armature = 0;
 };
 
@@ -177,7 +178,7 @@ inline void check_model_numbers(const Model<double>& model,
     detail::check_divisor(link + "the moment of inertia zz about the link origin", J.zz, "kg m^2");
     if (model.armature.empty()) continue;
     const double armature = model.armature[model.v_index[i]];
-    const char* unit = is_revolute(model.joint_type[i]) ? "kg m^2" : "kg";
+    const char* unit = model.joint_type[i] == JointType::Prismatic ? "kg" : "kg m^2";
     detail::check_constants(joint + "the armature", {armature}, unit, max_magnitude);
     detail::check_divisor(joint + "the armature", armature, unit);
     if (armature < 0)
@@ -244,7 +245,7 @@ inline SnapReport snap(Model<double>& model, double tol) {
     Sym3<double>& J = model.I[i].I;
     const double moment = std::max({J.xx, J.yy, J.zz});
     for (double* x : {&J.xy, &J.xz, &J.yz}) small_entry(*x, moment);
-    if (model.joint_type[i] == JointType::Free) continue;
+    if (quaternion_offset(model.joint_type[i]) >= 0) continue;  // no axis
     Vec3<double>& k = model.joint_axis[i];
     for (double* x : {&k.x, &k.y, &k.z}) unit_entry(*x);
     if (!is_revolute(model.joint_type[i])) continue;
@@ -279,7 +280,7 @@ class ModelBuilder {
     if (joint.kind == JointKind::Fixed || joint.kind == JointKind::Floating)
       throw ModelError("joint '" + joint_name + "' is " +
                        (joint.kind == JointKind::Fixed ? "fixed" : "floating") +
-                       ": only a revolute, prismatic or planar joint has an armature");
+                       ": only a revolute, prismatic, planar or ball joint has an armature");
     joint.armature = armature;
   }
 
@@ -389,11 +390,12 @@ class ModelBuilder {
         model.frames.push_back({links_[c].name, b, identity()});
         stack.push_back({c, b, identity()});
       } else {
+        const bool axial = joint.kind != JointKind::Floating && joint.kind != JointKind::Ball;
         const JointType type = joint.kind == JointKind::Floating  ? JointType::Free
+                               : joint.kind == JointKind::Ball      ? JointType::Ball
                                : joint.kind == JointKind::Prismatic ? JointType::Prismatic
                                                                     : revolute_type(unit_axis(joint));
-        const Vec3<double> axis = joint.kind == JointKind::Floating ? Vec3<double>{0, 0, 0}
-                                                                    : unit_axis(joint);
+        const Vec3<double> axis = axial ? unit_axis(joint) : Vec3<double>{0, 0, 0};
         if (type == JointType::Free && joint.armature != 0)
           throw ModelError("joint '" + joint.name + "' is floating: a free joint has no armature");
         const int b = add_body(model, body, X_child_body, type, axis, joint.name, links_[c].name,

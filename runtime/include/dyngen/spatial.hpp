@@ -353,6 +353,58 @@ ArticulatedInertia<S> downdate(const ArticulatedInertia<S>& A, const Force<S>& U
 }
 
 template <class S>
+Mat3<S> transpose(const Mat3<S>& A) {
+  return {A.xx, A.yx, A.zx, A.xy, A.yy, A.zy, A.xz, A.yz, A.zz};
+}
+
+template <class S>
+Mat3<S> operator-(const Mat3<S>& a, const Mat3<S>& b) {
+  return {a.xx - b.xx, a.xy - b.xy, a.xz - b.xz, a.yx - b.yx, a.yy - b.yy,
+          a.yz - b.yz, a.zx - b.zx, a.zy - b.zy, a.zz - b.zz};
+}
+
+/// A as a full 3x3 matrix
+template <class S>
+Mat3<S> full(const Sym3<S>& A) {
+  return {A.xx, A.xy, A.xz, A.xy, A.yy, A.yz, A.xz, A.yz, A.zz};
+}
+
+/// The upper triangle of A, which the caller knows to be symmetric
+template <class S>
+Sym3<S> upper(const Mat3<S>& A) {
+  return {A.xx, A.yy, A.zz, A.xy, A.xz, A.yz};
+}
+
+/// A^-1 of a positive definite symmetric 3x3 by its cofactors, with one reciprocal: a ball
+/// joint's (S^T IA S)^-1 in ABA.
+template <class S>
+Sym3<S> inverse(const Sym3<S>& A) {
+  const S cxx = A.yy * A.zz - A.yz * A.yz;
+  const S cxy = A.xz * A.yz - A.xy * A.zz;
+  const S cxz = A.xy * A.yz - A.xz * A.yy;
+  const S r = S(1) / (A.xx * cxx + A.xy * cxy + A.xz * cxz);
+  const S cyy = A.xx * A.zz - A.xz * A.xz;
+  const S cyz = A.xy * A.xz - A.xx * A.yz;
+  const S czz = A.xx * A.yy - A.xy * A.xy;
+  return {cxx * r, cyy * r, czz * r, cxy * r, cxz * r, cyz * r};
+}
+
+/// A - U D^-1 U^T for a ball joint, whose S = [1; 0] takes A's angular columns U = [I; H^T],
+/// with Dinv = (I + armature)^-1 (RBDA eq. 7.37 with three columns). Without armature the
+/// angular rows vanish, as the joint passes on no moment: Ia = [0 0; 0 M - H^T I^-1 H].
+template <class S>
+ArticulatedInertia<S> downdate_ball(const ArticulatedInertia<S>& A, const Sym3<S>& Dinv,
+                                    bool armature) {
+  const Mat3<S> I = full(A.I);
+  const Mat3<S> L = mul(full(Dinv), A.H);  // D^-1 H
+  ArticulatedInertia<S> Ia{{}, {}, upper(full(A.M) - mul(transpose(A.H), L))};
+  if (!armature) return Ia;
+  Ia.I = upper(I - mul(I, mul(full(Dinv), I)));
+  Ia.H = A.H - mul(I, L);
+  return Ia;
+}
+
+template <class S>
 InertiaVariation<S> operator+(const InertiaVariation<S>& a, const InertiaVariation<S>& b) {
   return {a.hdot + b.hdot, a.Idot + b.Idot, a.p + b.p};
 }
@@ -399,11 +451,6 @@ Mat3<S> quaternion_rotation(const S& w, const S& x, const S& y, const S& z) {
   return {one - two * (yy + zz), two * (xy - wz),        two * (xz + wy),
           two * (xy + wz),        one - two * (xx + zz), two * (yz - wx),
           two * (xz - wy),        two * (yz + wx),        one - two * (xx + yy)};
-}
-
-template <class S>
-Mat3<S> transpose(const Mat3<S>& A) {
-  return {A.xx, A.yx, A.zx, A.xy, A.yy, A.zy, A.xz, A.yz, A.zz};
 }
 
 template <class S>

@@ -22,6 +22,7 @@ struct Workspace {
       : Xup(model.nbodies), X0(model.nbodies), v(model.nbodies), a(model.nbodies), c(model.nbodies),
         f(model.nbodies), Ic(model.nbodies), IA(model.nbodies), pA(model.nbodies),
         U(model.nbodies), D(model.nbodies), Dinv(model.nbodies), u(model.nbodies),
+        Dinv_ball(model.nbodies),
         zero(model.nv, S(0)), Bc(model.nbodies), F(model.nbodies), s(model.nv), dv(model.nv),
         alpha(model.nv), beta(model.nv), pair_X(12 * static_cast<std::size_t>(model.nbodies)),
         pair_motion(24 * static_cast<std::size_t>(model.nv)), pair_force(pair_motion.size()),
@@ -103,6 +104,7 @@ struct Workspace {
   std::vector<S> D;                       // [nbodies] S^T IA S (ABA)
   std::vector<S> Dinv;                    // [nbodies] 1 / D (ABA)
   std::vector<S> u;                       // [nbodies] tau - S^T pA (ABA)
+  std::vector<Sym3<S>> Dinv_ball;         // [nbodies] (S^T IA S)^-1 of a ball joint (ABA)
   std::vector<S> zero;                    // [nv] zeros: the v and a of gravity() and nle()
   // rnea_derivatives, in the bodies' frames (in base coordinates past max_carried_path_joints,
   // rnea_derivatives.hpp): the composite variation and force of the subtree, beside v, a, Ic

@@ -3,7 +3,7 @@
 // (mj_fullM), inverse dynamics (mj_inverse's qfrc_inverse), forward dynamics (mj_forward's
 // qacc) and site placements must match the runtime's on the model dyngen read, to a norm-wise
 // relative error of 1e-9, at seeded random states. The files cover the orientation forms, angle
-// units, default classes, multi-joint bodies, ref, armature and inertia from geoms.
+// units, default classes, multi-joint bodies, ref, armature, ball joints and inertia from geoms.
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
@@ -104,7 +104,7 @@ TEST_P(MjcfPeer, DynamicsAndSitesMatchMujocosOwnCompilation) {
               GetParam(), nv, crba, rnea, aba, sites);
 }
 
-INSTANTIATE_TEST_SUITE_P(Files, MjcfPeer, ::testing::Values("arm.xml", "quadruped.xml"),
+INSTANTIATE_TEST_SUITE_P(Files, MjcfPeer, ::testing::Values("arm.xml", "quadruped.xml", "ball.xml"),
                          [](const ::testing::TestParamInfo<const char*>& info) {
                            std::string name = info.param;
                            return name.substr(0, name.find('.'));

@@ -132,6 +132,7 @@ int mujoco_joint_type(JointType t) {
   switch (t) {
     case JointType::Prismatic: return mjJNT_SLIDE;
     case JointType::Free: return mjJNT_FREE;
+    case JointType::Ball: return mjJNT_BALL;
     default: return mjJNT_HINGE;
   }
 }
@@ -218,7 +219,7 @@ Eigen::MatrixXd velocity_map(const mjModel* m, const Model<double>& model,
       A.block<3, 3>(dof, iv) = rotation(q.subspan(model.q_index[i] + 3, 4));
       A.block<3, 3>(dof + 3, iv + 3).setIdentity();
     } else {
-      A(dof, iv) = 1;
+      for (int d = 0; d < joint_nv(model.joint_type[i]); ++d) A(dof + d, iv + d) = 1;
     }
   }
   return A;
@@ -287,7 +288,8 @@ MujocoRobot::MujocoRobot(const std::string& path, const Model<double>& model,
                                "' of type " + joint_type_name(model_.joint_type[i]));
     joint_.push_back(j);
     if (!model_.armature.empty() && model_.joint_type[i] != JointType::Free)
-      m_->dof_armature[m_->jnt_dofadr[j]] = model_.armature[model_.v_index[i]];
+      for (int d = 0; d < joint_nv(model_.joint_type[i]); ++d)
+        m_->dof_armature[m_->jnt_dofadr[j] + d] = model_.armature[model_.v_index[i] + d];
   }
   d_.reset(mj_makeData(m_.get()));
 }

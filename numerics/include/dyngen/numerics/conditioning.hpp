@@ -53,6 +53,16 @@ S max_abs(const ArticulatedInertia<S>& A) {
   return m;
 }
 
+/// The smallest eigenvalue of a symmetric 3x3: a ball joint's D, the pivot block ABA inverts.
+template <class S>
+S smallest_eigenvalue(const Sym3<S>& A) {
+  Eigen::Matrix<S, 3, 3> D;
+  D << A.xx, A.xy, A.xz, A.xy, A.yy, A.yz, A.xz, A.yz, A.zz;
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix<S, 3, 3>>(D, Eigen::EigenvaluesOnly)
+      .eigenvalues()
+      .minCoeff();
+}
+
 /// The smallest eigenvalue of [I H; H^T M]: the pivot that the LDL^T solve below a free joint
 /// divides by, at its smallest.
 template <class S>
@@ -176,9 +186,12 @@ inline Conditioning estimate_conditioning(const Model<double>& model, int sample
       const long double size = detail::max_abs(ws.IA[i]);
       inertia_max = std::max(inertia_max, size);
       inertia_min = std::min(inertia_min, size);
-      const long double D = ml.joint_type[i] == JointType::Free
-                                ? detail::smallest_eigenvalue(ws.IA[i])
-                                : ws.D[i];
+      const JointType t = ml.joint_type[i];
+      const long double D =
+          t == JointType::Free   ? detail::smallest_eigenvalue(ws.IA[i])
+          : t == JointType::Ball ? detail::smallest_eigenvalue(
+                                       dyngen::detail::ball_D(ml, ws.IA[i], ml.v_index[i]))
+                                 : ws.D[i];
       const double pivot = size > 0 ? static_cast<double>(D / size) : 0.0;
       if (pivot < c.pivot_min) c.pivot_min = pivot, c.pivot_joint = ml.joint_name[i];
     }

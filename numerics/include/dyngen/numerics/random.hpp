@@ -60,15 +60,17 @@ struct State {
 };
 
 /// q in [-pi, pi], qd and qdd in [-2, 2], tau in [-5, 5] (the same numbers in metres for
-/// prismatic joints); a free joint's position in [-1, 1] m and a random unit quaternion.
+/// prismatic joints); a free joint's position in [-1, 1] m, and a random unit quaternion for
+/// free and ball joints.
 inline State random_state(const Model<double>& model, Random& rng) {
   State s;
   for (int i = 0; i < model.nbodies; ++i) {
-    if (model.joint_type[i] != JointType::Free) {
+    const int o = quaternion_offset(model.joint_type[i]);
+    if (o < 0) {
       s.q.push_back(rng.uniform(-std::numbers::pi, std::numbers::pi));
       continue;
     }
-    for (int k = 0; k < 3; ++k) s.q.push_back(rng.uniform(-1, 1));
+    for (int k = 0; k < o; ++k) s.q.push_back(rng.uniform(-1, 1));
     const std::vector<double> w = random_unit_quaternion(rng);
     s.q.insert(s.q.end(), w.begin(), w.end());
   }
