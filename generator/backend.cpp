@@ -182,10 +182,19 @@ std::string frame_name_lines(const Model<double>& model) {
 
 namespace {
 
-/// The header's lines on how q and v hold each free and ball joint.
+/// The header's lines on how q and v hold each free and ball joint, and what each mimic joint
+/// follows.
 std::vector<std::string> free_joint_lines(const Model<double>& model) {
   std::vector<std::string> free_joints;
   for (int i = 0; i < model.nbodies; ++i) {
+    if (is_mimic(model, i)) {
+      const int p = model.mimic[i];
+      free_joints.push_back(fmt::format(
+          "mimic joint '{}' has no entry: it follows '{}', q = {} q[{}] + {}, v = {} v[{}]",
+          safe_text(model.joint_name[i]), safe_text(model.joint_name[p]),
+          model.mimic_multiplier[i], model.q_index[p], model.mimic_offset[i],
+          model.mimic_multiplier[i], model.v_index[p]));
+    }
     if (model.joint_type[i] == JointType::Ball) {
       free_joints.push_back(fmt::format(
           "ball joint '{}': q[{}..{}] = unit quaternion w, x, y, z of the body in its parent;",

@@ -160,10 +160,28 @@ std::string armature_records(const Model<double>& model) {
                      fmt::join(values, ", "));
 }
 
-/// model_from_records' arguments after the bodies and gravity: the frames and the armature.
+/// model_from_records' arguments after the bodies and gravity: the frames, the armature and the
+/// mimic joints, each "{}" when there are none but a later one.
 std::string record_arguments(const Model<double>& model) {
-  if (model.armature.empty()) return model.frames.empty() ? "" : ", model_frames";
-  return model.frames.empty() ? ", {}, model_armature" : ", model_frames, model_armature";
+  std::vector<std::string> arguments{model.frames.empty() ? "{}" : "model_frames",
+                                     model.armature.empty() ? "{}" : "model_armature",
+                                     model.mimic.empty() ? "{}" : "model_mimics"};
+  while (!arguments.empty() && arguments.back() == "{}") arguments.pop_back();
+  std::string out;
+  for (const std::string& a : arguments) out += ", " + a;
+  return out;
+}
+
+/// The model's mimic joints as MimicRecords (model.hpp.in), or "" without any.
+std::string mimic_records(const Model<double>& model) {
+  if (model.mimic.empty()) return "";
+  std::string out = "\ninline const ::dyngen::MimicRecord model_mimics[] = {\n"
+                    "    // body, the body whose joint it follows, q = multiplier q_primary + offset\n";
+  for (int i = 0; i < model.nbodies; ++i)
+    if (is_mimic(model, i))
+      out += fmt::format("    {{{}, {}, {}, {}}},\n", i, model.mimic[i],
+                         literal(model.mimic_multiplier[i]), literal(model.mimic_offset[i]));
+  return out + "};\n";
 }
 
 /// The model's frames as FrameRecords (model.hpp.in), or "" without frames.
@@ -369,7 +387,7 @@ void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
              {"namespace", p.ns},
              {"records", model_records<T>(p.model)},
              {"frame_records", frame_records(p.model)},
-             {"armature_records", armature_records(p.model)},
+             {"armature_records", armature_records(p.model) + mimic_records(p.model)},
              {"record_arguments", record_arguments(p.model)},
              {"gravity", fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z))}})});
   std::string includes;
@@ -526,10 +544,17 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba,
         c.pivot_min, c.pivot_joint);
   } else if (with_aba) {
     const double lost = c.aba_digits_lost();
+    const std::string pivots =
+        c.factorised ? fmt::format("smallest pivot D/M_kk of M = L^T D L {:.2g} (joint '{}'; "
+                                   "mimic joints: forward dynamics factorise M)",
+                                   c.pivot_min, c.pivot_joint)
+                     : fmt::format("smallest ABA pivot D/max|IA| {:.2g} (joint '{}'), articulated "
+                                   "inertias span {:.2g}",
+                                   c.pivot_min, c.pivot_joint, c.inertia_range);
     text += fmt::format(
-        "\n  smallest ABA pivot D/max|IA| {:.2g} (joint '{}'), articulated inertias span {:.2g}:\n"
+        "\n  {}:\n"
         "  ABA may lose {:.1f} digits, keeping about {:.1f} in double and {:.1f} in float{}",
-        c.pivot_min, c.pivot_joint, c.inertia_range, lost,
+        pivots, lost,
         std::max(0.0, numerics::digits_of<double>() - lost),
         std::max(0.0, numerics::digits_of<float>() - lost),
         aba_overflows ? fmt::format(" (none in {} at extreme states, where it overflows)",
@@ -552,7 +577,26 @@ std::string typical_overflow(const Robot& robot, const Algorithm& a, bool single
   return single ? in(0.0f) : in(0.0);
 }
 
+/// The generated code takes sin and cos of q's entries only: a revolute mimic joint must follow
+/// its primary as q or -q (a prismatic one by any law).
+void check_mimic_laws(const Robot& robot) {
+  const Model<double>& model = robot.model;
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (!is_mimic(model, i) || !is_revolute(model.joint_type[i]) || model.mimic_mirrors[i] ||
+        (model.mimic_multiplier[i] == 1 && model.mimic_offset[i] == 0))
+      continue;
+    throw InputError(fmt::format(
+        "{}: revolute mimic joint '{}' follows '{}' with multiplier {} and offset {}: dyngen "
+        "generates code for revolute mimic joints with multiplier 1 or -1 and offset 0 (its "
+        "runtime and dyngen eval take any). Treat mimic joints as independent joints "
+        "(--mimic-independent), or lock the joint (--lock {})",
+        robot.path, safe_text(model.joint_name[i]), safe_text(model.joint_name[model.mimic[i]]),
+        model.mimic_multiplier[i], model.mimic_offset[i], safe_text(model.joint_name[i])));
+  }
+}
+
 Generated generate(const Robot& robot, const GenerateOptions& options) {
+  check_mimic_laws(robot);
   for (const Algorithm& a : options.algorithms)
     if (uses_frames(a) && robot.model.frames.empty())
       throw InputError(fmt::format("{}: {} computes frames, and the model has none: name them "

@@ -314,7 +314,9 @@ struct ModelFlags {
                    "(repeatable)")
         ->type_name("JOINT=VALUE");
     app.add_flag("--mimic-independent", mimic_independent,
-                 "accept URDF mimic joints as independent joints (by default they are refused)");
+                 "treat URDF mimic joints as independent joints, each with its own q, v and tau "
+                 "(by default a mimic joint follows its primary: q = multiplier q_primary + "
+                 "offset, and has no coordinate of its own)");
     // one value, split here: a vector option would take the robot after it as a link too
     app.add_option_function<std::string>(
            "--frames", [this](const std::string& text) { frames = split_names(text); },

@@ -193,7 +193,9 @@ RobotDescription parse_urdf(const std::string& path, const std::string& xml) {
       robot.warnings.push_back(fmt::format(
           "{}: joint '{}': axis ({} {} {}) has length {:.6g}; it is normalised", path, joint->name,
           spec.axis.x, spec.axis.y, spec.axis.z, norm));
-    if (joint->mimic) robot.mimics.push_back({joint->name, joint->mimic->joint_name});
+    if (joint->mimic)
+      robot.mimics.push_back({joint->name, joint->mimic->joint_name, joint->mimic->multiplier,
+                              joint->mimic->offset});
     robot.builder.add_joint(spec);
   }
   return robot;

@@ -78,7 +78,46 @@ std::vector<int> joints_with_massless_subtree(const Model<double>& model) {
   return joints;
 }
 
+namespace {
+
+/// joints_moving_no_mass of a robot with mimic joints, whose forward dynamics factorise M:
+/// the joints whose column's pivot D of M = L^T D L is at most 1e-12 of M's diagonal entry.
+std::vector<int> columns_moving_no_mass(const Model<double>& model) {
+  const int n = model.nv;
+  Workspace<double> ws(model);
+  std::mt19937_64 rng(20261121);
+  std::vector<double> q(model.nq), M(static_cast<std::size_t>(n) * n), Dinv(n);
+  std::vector<int> joints;
+  for (int sample = 0; sample < 16; ++sample) {
+    for (double& x : q) x = sample == 0 ? 0.0 : -3.14159 + 6.28318 * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+    for (int i = 0; i < model.nbodies; ++i)
+      if (const int o = quaternion_offset(model.joint_type[i]); o >= 0)
+        std::fill_n(q.begin() + model.q_index[i] + o, 4, 0.0), q[model.q_index[i] + o] = 1;
+    crba<double>(model, ws, q, M);
+    std::vector<double> diagonal(n);
+    for (int c = 0; c < n; ++c) diagonal[c] = M[row_major(n, c, c)];
+    factor_ltdl<double>(n, ws.column_parent.data(), M, Dinv);
+    for (int i = 0; i < model.nbodies; ++i) {
+      if (is_mimic(model, i) || std::count(joints.begin(), joints.end(), i)) continue;
+      for (int d = 0; d < joint_nv(model.joint_type[i]); ++d) {
+        const int c = model.v_index[i] + d;
+        const double D = 1 / Dinv[c];
+        if (!std::isnan(D) &&
+            !(D > 1e-12 * diagonal[c] && D >= std::numeric_limits<double>::min())) {
+          joints.push_back(i);
+          break;
+        }
+      }
+    }
+  }
+  std::sort(joints.begin(), joints.end());
+  return joints;
+}
+
+}  // namespace
+
 std::vector<int> joints_moving_no_mass(const Model<double>& model) {
+  if (!model.mimic.empty()) return columns_moving_no_mass(model);
   const int n = model.nv;
   Workspace<double> ws(model);
   // angles from raw mt19937_64 bits: the same samples on every standard library
@@ -138,21 +177,16 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
 
 namespace {
 
-/// Mimic joints that still move are refused, or accepted as independent joints on request.
-void check_mimics(Robot& robot, const std::vector<std::pair<std::string, std::string>>& mimics,
-                  bool independent) {
+/// Mimic joints that still move, accepted as independent joints on request, say so.
+void warn_independent_mimics(Robot& robot, const std::vector<RobotDescription::Mimic>& mimics) {
   std::string moving;
   const std::set<std::string> moving_joints(robot.model.joint_name.begin(),
                                             robot.model.joint_name.end());
-  for (const auto& [joint, mimicked] : mimics)
-    if (moving_joints.count(joint))
-      moving += fmt::format("{}'{}' (mimics '{}')", moving.empty() ? "" : ", ", joint, mimicked);
+  for (const RobotDescription::Mimic& m : mimics)
+    if (moving_joints.count(m.joint))
+      moving += fmt::format("{}'{}' (mimics '{}')", moving.empty() ? "" : ", ", m.joint,
+                            m.mimicked);
   if (moving.empty()) return;
-  if (!independent)
-    throw InputError(fmt::format(
-        "{}: mimic joints are not supported: {}.\nTreat them as independent joints, each with its "
-        "own q, v and tau (--mimic-independent), or lock them (--lock JOINT).",
-        robot.path, moving));
   robot.warnings.push_back(
       fmt::format("{}: mimic joints treated as independent joints: {}", robot.path, moving));
 }
@@ -316,13 +350,16 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
                                                      : default_gravity;
   ModelBuilder& builder = description.builder;
   try {
+    if (!options.mimic_independent)
+      for (const RobotDescription::Mimic& m : description.mimics)
+        builder.set_mimic(m.joint, m.mimicked, m.multiplier, m.offset);
     for (const auto& [joint, value] : options.armature) {
       if (joint != "all") {
         builder.set_armature(joint, value);
         continue;
       }
       for (const JointSpec& j : builder.joints())
-        if (j.kind != JointKind::Fixed && j.kind != JointKind::Floating)
+        if (j.kind != JointKind::Fixed && j.kind != JointKind::Floating && j.mimic.empty())
           builder.set_armature(j.name, value);
     }
     for (const std::string& joint : options.lock) {
@@ -349,7 +386,7 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
     throw InputError(fmt::format(
         "{}: the robot has {} degrees of freedom; dyngen handles at most {}", path,
         robot.model.nv, max_nv));
-  check_mimics(robot, description.mimics, options.mimic_independent);
+  if (options.mimic_independent) warn_independent_mimics(robot, description.mimics);
   if (options.snap) robot.snapped = snap(robot.model, *options.snap);
   if (!options.all_frames) select_frames(robot.model, builder, options.frames, path);
   return robot;

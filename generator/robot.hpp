@@ -30,7 +30,12 @@ struct RobotDescription {
   ModelBuilder builder;
   std::optional<Vec3<double>> gravity;  // a chain spec may set it
   std::vector<std::string> warnings;
-  std::vector<std::pair<std::string, std::string>> mimics;  // (joint, the joint it mimics)
+  /// URDF's <mimic> joints: joint follows q = multiplier q_mimicked + offset
+  struct Mimic {
+    std::string joint, mimicked;
+    double multiplier = 1, offset = 0;
+  };
+  std::vector<Mimic> mimics;
   /// The root link is the world, whose bodies float by their own free joints (MJCF), not a
   /// robot link that --floating-base could put on one.
   bool root_is_world = false;
@@ -44,7 +49,7 @@ struct LoadOptions {
   bool lock_massless = false;           // also lock every joint whose subtree has no mass
   std::optional<Vec3<double>> gravity;  // overrides the file's and the default
   bool floating_base = false;           // the root link on a free joint
-  bool mimic_independent = false;       // accept URDF mimic joints as independent joints
+  bool mimic_independent = false;       // URDF mimic joints as independent joints (Model::mimic)
   std::optional<double> snap;           // snap constants within this tolerance (snap())
   std::vector<std::string> frames;      // the links whose frames to keep, in this order
                                         // (--frames); none named: default_frames_rule

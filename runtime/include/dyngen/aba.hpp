@@ -3,7 +3,9 @@
 
 #include <span>
 
+#include "dyngen/crba.hpp"
 #include "dyngen/joint.hpp"
+#include "dyngen/rnea.hpp"
 #include "dyngen/trace_hook.hpp"
 #include "dyngen/workspace.hpp"
 
@@ -51,6 +53,22 @@ Motion<S> ball_acceleration(const Workspace<S>& ws, int i, const Vec3<S>& u, con
   return {w, {}};
 }
 
+/// qdd = M^-1 (tau - h) by factorising CRBA's M: the forward dynamics of a robot with mimic
+/// joints, for which ABA's recursion does not hold (a joint shares its primary's column), as in
+/// Pinocchio 3. Needs the workspace's matrix buffers.
+template <class S>
+void forward_dynamics_by_mass_matrix(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
+                                     std::span<const S> qd, std::span<const S> tau,
+                                     std::span<S> qdd) {
+  const int n = model.nv;
+  crba<S>(model, ws, q, ws.H);
+  factor_ltdl<S>(n, ws.column_parent.data(), ws.H, ws.column_Dinv);
+  nle<S>(model, ws, q, qd, ws.h);
+  TraceHook<S>::enter(-1, Pass::Product);
+  for (int k = 0; k < n; ++k) qdd[k] = tau[k] - ws.h[k];
+  ltdl_solve<S>(n, ws.column_parent.data(), ws.H, ws.column_Dinv, qdd);
+}
+
 }  // namespace detail
 
 /// Forward dynamics: qdd = M(q)^-1 (tau - C(q, qd) qd - g(q)). Requires every joint to move
@@ -61,6 +79,7 @@ Motion<S> ball_acceleration(const Workspace<S>& ws, int i, const Vec3<S>& u, con
 template <class S>
 void aba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<const S> qd,
          std::span<const S> tau, std::span<S> qdd) {
+  if (!model.mimic.empty()) return detail::forward_dynamics_by_mass_matrix(model, ws, q, qd, tau, qdd);
   const Motion<S> a0 = base_acceleration(model);
 
   // velocity pass in classical accelerations (rnea.hpp): a_i = [wd_i; ac_i], the acceleration of

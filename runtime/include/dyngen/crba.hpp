@@ -10,6 +10,27 @@
 
 namespace dyngen {
 
+namespace detail {
+
+/// M = G^T M_joints G where a mimic joint shares a column: the entries S_j^T F of joint j's
+/// columns (from vj) and the row's are added to M[row][vj + e], and with `mirror` (j an
+/// ancestor) to M[vj + e][row] too, which adds twice what a joint and its mimic on one path
+/// make on the diagonal.
+template <class S>
+void add_mimic_entry(const Model<S>& model, int j, const Force<S>& F, std::size_t row,
+                     std::size_t vj, std::span<S> M, bool mirror) {
+  const std::size_t n = static_cast<std::size_t>(model.nv);
+  S t[6];
+  joint_project(model, j, F, t);
+  for (int e = 0; e < joint_nv(model.joint_type[j]); ++e) {
+    const std::size_t col = vj + static_cast<std::size_t>(e);
+    M[row * n + col] = M[row * n + col] + t[e];
+    if (mirror) M[col * n + row] = M[col * n + row] + t[e];
+  }
+}
+
+}  // namespace detail
+
 /// Mass matrix M(q), written full (both triangles), row-major: M[i * nv + j]. Entries of
 /// joints on different branches are zero. No allocation.
 template <class S>
@@ -34,13 +55,19 @@ void crba(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
       TraceHook<S>::enter(i, Pass::CompositeInertia);  // again after a column was carried up
       const std::size_t row = static_cast<std::size_t>(model.v_index[i] + d);
       Force<S> F = mul(ws.Ic[i], joint_column(model, i, d));
-      joint_project(model, i, F, &M[row * n + model.v_index[i]]);
-      if (!model.armature.empty()) M[row * n + row] = M[row * n + row] + model.armature[row];
+      if (ws.shares_column[i]) detail::add_mimic_entry(model, i, F, row, row, M, false);
+      else joint_project(model, i, F, &M[row * n + model.v_index[i]]);
+      if (!model.armature.empty() && !is_mimic(model, i))
+        M[row * n + row] = M[row * n + row] + model.armature[row];
       for (int j = i; model.parent[j] >= 0;) {
         TraceHook<S>::enter(model.parent[j], Pass::Column);
         F = apply_force_T(ws.Xup[j], F);
         j = model.parent[j];
         const std::size_t vj = static_cast<std::size_t>(model.v_index[j]);
+        if (ws.shares_column[i] || ws.shares_column[j]) {
+          detail::add_mimic_entry(model, j, F, row, vj, M, true);
+          continue;
+        }
         joint_project(model, j, F, &M[row * n + vj]);
         for (int e = 0; e < joint_nv(model.joint_type[j]); ++e)
           M[(vj + e) * n + row] = M[row * n + vj + e];
@@ -65,6 +92,20 @@ void factor_ltdl(int n, const int* parent, std::span<S> M, std::span<S> Dinv) {
       M[at(k, i)] = a;
     }
   }
+}
+
+/// x = M^-1 b in place from factor_ltdl's L and Dinv (RBDA Table 6.4 with D apart): L^T y = b
+/// from the deepest joint up, y D^-1, then L x = y from the root down.
+template <class S>
+void ltdl_solve(int n, const int* parent, std::span<const S> L, std::span<const S> Dinv,
+                std::span<S> x) {
+  TraceHook<S>::enter(-1, Pass::Factor);
+  const auto at = [n](int i, int j) { return row_major(n, i, j); };
+  for (int k = n - 1; k >= 0; --k)
+    for (int i = parent[k]; i >= 0; i = parent[i]) x[i] = x[i] - L[at(k, i)] * x[k];
+  for (int k = 0; k < n; ++k) x[k] = x[k] * Dinv[k];
+  for (int k = 0; k < n; ++k)
+    for (int i = parent[k]; i >= 0; i = parent[i]) x[k] = x[k] - L[at(k, i)] * x[i];
 }
 
 /// M^-1 = L^-1 D^-1 L^-T from factor_ltdl's L and Dinv, written full and exactly symmetric.

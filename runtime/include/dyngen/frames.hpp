@@ -21,6 +21,22 @@ enum class JacobianAxes { World, Local };
 
 namespace detail {
 
+/// e = x, or e += x where a mimic joint shares the column (Workspace::shares_column)
+template <class S>
+void put_entry(bool add, S& e, const S& x) {
+  e = add ? e + x : x;
+}
+
+/// Zeros the columns that mimic joints share in a matrix of `rows` x nv, row-major, which
+/// put_entry then adds to.
+template <class S>
+void clear_shared_columns(const Model<S>& model, const Workspace<S>& ws, int rows,
+                          std::span<S> A) {
+  for (int j = 0; j < model.nbodies; ++j)
+    if (ws.shares_column[j])
+      for (int row = 0; row < rows; ++row) A[row * model.nv + model.v_index[j]] = S(0);
+}
+
 /// ws.X0[i] = X_i0, the base-to-body transform of every body at q.
 template <class S>
 void body_placements(const Model<S>& model, Workspace<S>& ws, std::span<const S> q) {
@@ -78,8 +94,9 @@ void frame_jacobians(const Model<S>& model, Workspace<S>& ws, std::span<const S>
         Vec3<S> lin = s0.lin + cross(s0.ang, X.r), ang = s0.ang;
         if (axes == JacobianAxes::Local) lin = mul(X.E, lin), ang = mul(X.E, ang);
         const int c = model.v_index[j] + d;
-        Jf[c] = lin.x, Jf[nv + c] = lin.y, Jf[2 * nv + c] = lin.z;
-        Jf[3 * nv + c] = ang.x, Jf[4 * nv + c] = ang.y, Jf[5 * nv + c] = ang.z;
+        const S column[6] = {lin.x, lin.y, lin.z, ang.x, ang.y, ang.z};
+        for (int row = 0; row < 6; ++row)
+          detail::put_entry(ws.shares_column[j], Jf[row * nv + c], column[row]);
       }
     }
   }
@@ -158,13 +175,17 @@ void com(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::spa
   const S inverse_mass = S(1) / total.m;
   c[0] = total.h.x * inverse_mass, c[1] = total.h.y * inverse_mass, c[2] = total.h.z * inverse_mass;
   const int nv = model.nv;
+  detail::clear_shared_columns(model, ws, 3, Jc);
   for (int j = 0; j < model.nbodies; ++j) {
     TraceHook<S>::enter(j, Pass::JacobianColumns);
     for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
       const Force<S> Fj = mul(ws.Ic[j], joint_column(model, j, d));
       const Vec3<S> column = scale(mul_T(ws.X0[j].E, Fj.lin), inverse_mass);
       const int k = model.v_index[j] + d;
-      Jc[k] = column.x, Jc[nv + k] = column.y, Jc[2 * nv + k] = column.z;
+      const bool add = ws.shares_column[j];
+      detail::put_entry(add, Jc[k], column.x);
+      detail::put_entry(add, Jc[nv + k], column.y);
+      detail::put_entry(add, Jc[2 * nv + k], column.z);
     }
   }
 }
@@ -182,6 +203,7 @@ void centroidal(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
   const Vec3<S> c = scale(total.h, S(1) / total.m);
   const int nv = model.nv;
   for (int e = 0; e < 6; ++e) h[e] = S(0);
+  detail::clear_shared_columns(model, ws, 6, A);
   for (int j = 0; j < model.nbodies; ++j) {
     TraceHook<S>::enter(j, Pass::JacobianColumns);
     const Mat3<S>& E = ws.X0[j].E;
@@ -193,7 +215,7 @@ void centroidal(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
       const int k = model.v_index[j] + d;
       const S column[6] = {linear.x, linear.y, linear.z, angular.x, angular.y, angular.z};
       for (int row = 0; row < 6; ++row) {
-        A[row * nv + k] = column[row];
+        detail::put_entry(ws.shares_column[j], A[row * nv + k], column[row]);
         h[row] = h[row] + column[row] * v[k];
       }
     }

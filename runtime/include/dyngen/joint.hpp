@@ -29,18 +29,30 @@ Motion<S> base_acceleration(const Model<S>& model) {
   return {{}, {-model.gravity.x, -model.gravity.y, -model.gravity.z}};
 }
 
+/// s = sin(q), c = cos(q) of body i's angle q; a mirroring mimic joint's (Model::mimic_mirrors)
+/// from its primary's entry qi[0]: sin(-x) = -sin(x), cos(-x) = cos(x), so that generated code
+/// takes sin and cos of q's entries only.
+template <class S>
+void angle_sincos(const Model<S>& model, int i, const S* qi, const S& q, S& s, S& c) {
+  if (!is_mimic(model, i) || !model.mimic_mirrors[i]) return joint_sincos(q, s, c);
+  joint_sincos(qi[0], s, c);
+  s = -s;
+}
+
 /// Xup = XJ(q) X_tree for body i (RBDA eq. 4.32 with Table 4.1's XJ).
 template <class S>
 Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
   const Xform<S>& Xt = model.X_tree[i];
   const Mat3<S>& T = Xt.E;
   const Vec3<S>& k = model.joint_axis[i];
-  const S& q = qi[0];
+  // a mimic joint's position from its primary's
+  const S q =
+      is_mimic(model, i) ? model.mimic_multiplier[i] * qi[0] + model.mimic_offset[i] : qi[0];
   switch (model.joint_type[i]) {
     case JointType::RevoluteX: {
       // rot_x(q) E_tree; k.x = +-1 turns the rotation's sense
       S c, s;
-      joint_sincos(q, s, c);
+      angle_sincos(model, i, qi, q, s, c);
       s = k.x * s;
       return {{T.xx, T.xy, T.xz, c * T.yx + s * T.zx, c * T.yy + s * T.zy, c * T.yz + s * T.zz,
                c * T.zx - s * T.yx, c * T.zy - s * T.yy, c * T.zz - s * T.yz},
@@ -48,7 +60,7 @@ Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
     }
     case JointType::RevoluteY: {
       S c, s;
-      joint_sincos(q, s, c);
+      angle_sincos(model, i, qi, q, s, c);
       s = k.y * s;
       return {{c * T.xx - s * T.zx, c * T.xy - s * T.zy, c * T.xz - s * T.zz, T.yx, T.yy, T.yz,
                s * T.xx + c * T.zx, s * T.xy + c * T.zy, s * T.xz + c * T.zz},
@@ -56,7 +68,7 @@ Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
     }
     case JointType::RevoluteZ: {
       S c, s;
-      joint_sincos(q, s, c);
+      angle_sincos(model, i, qi, q, s, c);
       s = k.z * s;
       return {{c * T.xx + s * T.yx, c * T.xy + s * T.yy, c * T.xz + s * T.yz, c * T.yx - s * T.xx,
                c * T.yy - s * T.xy, c * T.yz - s * T.xz, T.zx, T.zy, T.zz},
@@ -65,7 +77,7 @@ Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
     case JointType::Revolute: {
       // E = c 1 + (1 - c) k k^T - s k x (RBDA eq. 2.24, transposed)
       S c, s;
-      joint_sincos(q, s, c);
+      angle_sincos(model, i, qi, q, s, c);
       const S t = S(1) - c;
       const Mat3<S> EJ{t * k.x * k.x + c,       t * k.x * k.y + s * k.z, t * k.x * k.z - s * k.y,
                        t * k.x * k.y - s * k.z, t * k.y * k.y + c,       t * k.y * k.z + s * k.x,
@@ -94,7 +106,8 @@ Motion<S> joint_motion(const Model<S>& model, int i, const S* qd) {
   if (model.joint_type[i] == JointType::Free)
     return {{qd[3], qd[4], qd[5]}, {qd[0], qd[1], qd[2]}};
   if (model.joint_type[i] == JointType::Ball) return {{qd[0], qd[1], qd[2]}, {}};
-  const Vec3<S> w = scale(model.joint_axis[i], qd[0]);
+  const Vec3<S> w = scale(model.joint_axis[i],
+                          is_mimic(model, i) ? model.mimic_multiplier[i] * qd[0] : qd[0]);
   if (is_revolute(model.joint_type[i])) return {w, {}};
   return {{}, w};
 }
@@ -113,7 +126,8 @@ Motion<S> joint_column(const Model<S>& model, int i, int d) {
   return joint_motion(model, i, e);
 }
 
-/// S^T f, into the joint's entries of out
+/// S^T f, into the joint's entries of out (a mimic joint's share of its primary's entry: the
+/// caller adds it)
 template <class S>
 void joint_project(const Model<S>& model, int i, const Force<S>& f, S* out) {
   switch (model.joint_type[i]) {
@@ -126,10 +140,12 @@ void joint_project(const Model<S>& model, int i, const Force<S>& f, S* out) {
       return;
     case JointType::Prismatic:
       out[0] = dot(model.joint_axis[i], f.lin);
-      return;
+      break;
     default:
       out[0] = dot(model.joint_axis[i], f.ang);
   }
+  // a mimic joint's column of S is its multiplier times the axis's
+  if (is_mimic(model, i)) out[0] = model.mimic_multiplier[i] * out[0];
 }
 
 /// S tau: the joint's entries of tau as a spatial force (S maps them as it maps velocities)

@@ -53,6 +53,12 @@ void ball_minv_articulated(const Model<S>& model, Workspace<S>& ws, int i) {
 template <class S>
 void minv(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::span<S> Minv) {
   const int n = model.nv;
+  if (!model.mimic.empty()) {  // no recursion with shared columns: M factorised, as in aba
+    crba<S>(model, ws, q, ws.H);
+    factor_ltdl<S>(n, ws.column_parent.data(), ws.H, ws.column_Dinv);
+    ltdl_inverse<S>(n, ws.column_parent.data(), ws.H, ws.column_Dinv, ws.Linv, Minv);
+    return;
+  }
   // per body and column (Workspace::pA_columns), or per row and column of M^-1
   const auto at = [n](int row, int column) { return row_major(n, row, column); };
   // kinematics: Xup_i, IA_i = I_i, pA_i = 0 for every unit torque

@@ -84,6 +84,14 @@ struct Model {
   /// [nv] rotor inertia (armature) of each degree of freedom, added to M's diagonal: RNEA adds
   /// armature a to tau, CRBA armature to M_kk, ABA to its pivot D. Empty when no joint has any.
   std::vector<S> armature;
+  /// Mimic joints (URDF's <mimic>, Pinocchio 3's mimic joints): body i with mimic[i] = p >= 0
+  /// has no coordinate of its own: its one-DoF joint follows q_i = mimic_multiplier[i] q_p +
+  /// mimic_offset[i], v_i = mimic_multiplier[i] v_p, and it shares p's q_index and v_index, so
+  /// that tau = G^T tau_joints and M = G^T M_joints G for the map G from the coordinates to the
+  /// joints. All empty when no joint mimics another.
+  std::vector<int> mimic;
+  std::vector<S> mimic_multiplier, mimic_offset;
+  std::vector<char> mimic_mirrors;  // [nbodies] 1: multiplier -1, offset 0 (q_i = -q_p)
 
   /// The same model in another scalar type; each constant is converted with static_cast.
   template <class T>
@@ -108,6 +116,10 @@ struct Model {
     }
     for (const Frame<S>& f : frames) m.frames.push_back({f.name, f.body, cast_xform<T>(f.placement)});
     for (const S& x : armature) m.armature.push_back(c<T>(x));
+    m.mimic = mimic;
+    m.mimic_mirrors = mimic_mirrors;
+    for (const S& x : mimic_multiplier) m.mimic_multiplier.push_back(c<T>(x));
+    for (const S& x : mimic_offset) m.mimic_offset.push_back(c<T>(x));
     return m;
   }
 
@@ -129,6 +141,12 @@ struct Model {
   }
 };
 
+/// Whether body i's joint mimics another's (Model::mimic).
+template <class S>
+bool is_mimic(const Model<S>& model, int i) {
+  return !model.mimic.empty() && model.mimic[i] >= 0;
+}
+
 /// The name of each entry of v (and of a, tau and the rows of M): the joint's name, or for a
 /// free joint its name followed by :vx, :vy, :vz, :wx, :wy, :wz (a ball joint: :wx, :wy, :wz).
 template <class S>
@@ -137,6 +155,7 @@ std::vector<std::string> velocity_names(const Model<S>& model) {
   std::vector<std::string> names;
   for (int i = 0; i < model.nbodies; ++i) {
     const JointType t = model.joint_type[i];
+    if (is_mimic(model, i)) continue;  // no entry of its own
     if (t != JointType::Free && t != JointType::Ball) {
       names.push_back(model.joint_name[i]);
       continue;
@@ -145,6 +164,32 @@ std::vector<std::string> velocity_names(const Model<S>& model) {
       names.push_back(model.joint_name[i] + suffixes[d]);
   }
   return names;
+}
+
+/// Makes the bodies i with mimic[i] = p >= 0 follow body p's joint (Model::mimic) in a model
+/// whose every joint has its own coordinates: numbers the others' q and v again, drops the
+/// mimic joints' armature entries, and gives each mimic joint its primary's indices.
+template <class S>
+void couple(Model<S>& model, const std::vector<int>& mimic, const std::vector<S>& multiplier,
+            const std::vector<S>& offset) {
+  std::vector<S> armature;
+  model.nq = model.nv = 0;
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (mimic[i] >= 0) continue;
+    const int old = model.v_index[i];
+    model.q_index[i] = model.nq, model.v_index[i] = model.nv;
+    model.nq += joint_nq(model.joint_type[i]);
+    model.nv += joint_nv(model.joint_type[i]);
+    for (int d = 0; d < joint_nv(model.joint_type[i]) && !model.armature.empty(); ++d)
+      armature.push_back(model.armature[old + d]);
+  }
+  for (int i = 0; i < model.nbodies; ++i)
+    if (mimic[i] >= 0) model.q_index[i] = model.q_index[mimic[i]], model.v_index[i] = model.v_index[mimic[i]];
+  model.armature = armature;
+  model.mimic = mimic, model.mimic_multiplier = multiplier, model.mimic_offset = offset;
+  model.mimic_mirrors.assign(mimic.size(), 0);
+  for (std::size_t i = 0; i < mimic.size(); ++i)
+    model.mimic_mirrors[i] = mimic[i] >= 0 && multiplier[i] == S(-1) && offset[i] == S(0);
 }
 
 /// One body of a model as plain numbers: what generated model tables hold.
@@ -169,12 +214,19 @@ struct FrameRecord {
   double r[3];
 };
 
+/// A mimic joint of a model as plain numbers (Model::mimic).
+struct MimicRecord {
+  int body, primary;
+  double multiplier, offset;
+};
+
 /// Rebuilds a model from its records (the inverse of model_records()); armature: by degree of
-/// freedom, or empty.
+/// freedom (v's order), or empty.
 inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
                                         const double (&gravity)[3],
                                         std::span<const FrameRecord> frames = {},
-                                        std::span<const double> armature = {}) {
+                                        std::span<const double> armature = {},
+                                        std::span<const MimicRecord> mimics = {}) {
   Model<double> m;
   m.nbodies = static_cast<int>(bodies.size());
   m.gravity = {gravity[0], gravity[1], gravity[2]};
@@ -196,6 +248,13 @@ inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
     m.frames.push_back({f.name, f.body,
                         {{f.E[0], f.E[1], f.E[2], f.E[3], f.E[4], f.E[5], f.E[6], f.E[7], f.E[8]},
                          {f.r[0], f.r[1], f.r[2]}}});
+  if (!mimics.empty()) {
+    std::vector<int> mimic(m.nbodies, -1);
+    std::vector<double> multiplier(m.nbodies, 1), offset(m.nbodies, 0);
+    for (const MimicRecord& r : mimics)
+      mimic[r.body] = r.primary, multiplier[r.body] = r.multiplier, offset[r.body] = r.offset;
+    couple(m, mimic, multiplier, offset);
+  }
   m.armature.assign(armature.begin(), armature.end());
   return m;
 }

@@ -49,6 +49,10 @@ struct JointSpec {
   /// Rotor inertia (MuJoCo's armature) of each of the joint's degrees of freedom, kg m^2 about a
   /// revolute axis (each axis of a ball joint), kg along a prismatic one; a free joint has none.
   double armature = 0;
+  /// A mimic joint (URDF's <mimic>) names the joint it follows, q = multiplier q_mimic + offset;
+  /// it then has no coordinate of its own (Model::mimic).
+  std::string mimic;
+  double multiplier = 1, offset = 0;
 };
 
 /// R from roll, pitch, yaw about fixed x, y, z axes: R = Rz(yaw) Ry(pitch) Rx(roll).
@@ -284,6 +288,16 @@ class ModelBuilder {
     joint.armature = armature;
   }
 
+  /// Makes joint `joint_name` follow q = multiplier q_primary + offset (JointSpec::mimic).
+  void set_mimic(const std::string& joint_name, const std::string& primary, double multiplier,
+                 double offset) {
+    const auto it = joint_index_.find(joint_name);
+    if (it == joint_index_.end())
+      throw ModelError("cannot make joint '" + joint_name + "' a mimic joint: no joint of that name");
+    JointSpec& joint = joints_[it->second];
+    joint.mimic = primary, joint.multiplier = multiplier, joint.offset = offset;
+  }
+
   /// Turns a joint into a fixed one, at q = 0.
   void lock(const std::string& joint_name) {
     const auto it = joint_index_.find(joint_name);
@@ -336,6 +350,7 @@ class ModelBuilder {
     if (visited != nlinks)
       throw ModelError("some links are not connected to the root link '" + links_[roots[0]].name +
                        "' (the tree has a loop)");
+    couple_mimics(model);
     if (std::all_of(model.armature.begin(), model.armature.end(),
                     [](double x) { return x == 0; }))
       model.armature.clear();
@@ -405,6 +420,38 @@ class ModelBuilder {
       }
     }
     return visited;
+  }
+
+  /// The body of moving joint `name`, or -1.
+  static int joint_body(const Model<double>& model, const std::string& name) {
+    for (int i = 0; i < model.nbodies; ++i)
+      if (model.joint_name[i] == name) return i;
+    return -1;
+  }
+
+  /// Gives each mimic joint its primary's coordinate (Model::mimic) and numbers the others'
+  /// again, dropping the mimic joints' entries of the armature.
+  void couple_mimics(Model<double>& model) const {
+    std::vector<int> mimic(model.nbodies, -1);
+    std::vector<double> multiplier(model.nbodies, 1), offset(model.nbodies, 0);
+    for (const JointSpec& joint : joints_) {
+      if (joint.mimic.empty() || joint.kind == JointKind::Fixed) continue;
+      const std::string what = "mimic joint '" + joint.name + "' follows '" + joint.mimic + "'";
+      const int m = joint_body(model, joint.name), p = joint_body(model, joint.mimic);
+      if (joint.kind != JointKind::Revolute && joint.kind != JointKind::Prismatic)
+        throw ModelError(what + ": only a revolute or prismatic joint can mimic another");
+      if (p < 0 || !(is_revolute(model.joint_type[p]) || model.joint_type[p] == JointType::Prismatic))
+        throw ModelError(what + ", which is not a moving revolute or prismatic joint (a fixed or "
+                         "locked one: lock the mimic joint too)");
+      if (joint.armature != 0) throw ModelError(what + ": a mimic joint has no armature of its own");
+      mimic[m] = p, multiplier[m] = joint.multiplier, offset[m] = joint.offset;
+    }
+    for (int i = 0; i < model.nbodies; ++i)
+      if (mimic[i] >= 0 && mimic[mimic[i]] >= 0)
+        throw ModelError("mimic joint '" + model.joint_name[i] + "' follows '" +
+                         model.joint_name[mimic[i]] + "', itself a mimic joint");
+    if (std::all_of(mimic.begin(), mimic.end(), [](int p) { return p < 0; })) return;
+    couple(model, mimic, multiplier, offset);
   }
 
   static int add_body(Model<double>& model, int parent, const Xform<double>& X_tree,

@@ -2,12 +2,30 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "dyngen/joint.hpp"
 #include "dyngen/trace_hook.hpp"
 #include "dyngen/workspace.hpp"
 
 namespace dyngen {
+
+namespace detail {
+
+/// tau = G^T tau_joints: each mimic joint adds S^T f of its body, its multiplier included, to
+/// its primary's entry, once the backward pass has written that entry.
+template <class S>
+void add_mimic_forces(const Model<S>& model, const std::vector<Force<S>>& f, std::span<S> tau) {
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (!is_mimic(model, i)) continue;
+    TraceHook<S>::enter(i, Pass::Backward);
+    S t;
+    joint_project(model, i, f[i], &t);
+    tau[model.v_index[i]] = tau[model.v_index[i]] + t;
+  }
+}
+
+}  // namespace detail
 
 /// Inverse dynamics: tau = M(q) qdd + C(q, qd) qd + g(q). q has model.nq entries, the others
 /// model.nv; no allocation.
@@ -56,13 +74,14 @@ void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
   for (int i = model.nbodies - 1; i >= 0; --i) {
     TraceHook<S>::enter(i, Pass::Backward);
     const int k = model.v_index[i];
-    joint_project(model, i, ws.f[i], &tau[k]);
+    if (!is_mimic(model, i)) joint_project(model, i, ws.f[i], &tau[k]);
     if (!model.armature.empty())
       for (int d = 0; d < joint_nv(model.joint_type[i]); ++d)
         tau[k + d] = tau[k + d] + model.armature[k + d] * qdd[k + d];
     const int p = model.parent[i];
     if (p >= 0) ws.f[p] = ws.f[p] + apply_force_T(ws.Xup[i], ws.f[i]);
   }
+  detail::add_mimic_forces(model, ws.f, tau);
 }
 
 /// Generalised gravity g(q), what rnea(q, 0, 0) computes: the torques that hold the robot still.
@@ -88,13 +107,15 @@ void gravity(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std:
     TraceHook<S>::enter(i, Pass::Backward);
     const RigidInertia<S>& Ic = ws.Ic[i];
     const Vec3<S>& a = ws.a[i].lin;
-    joint_project(model, i, Force<S>{cross(Ic.h, a), scale(a, Ic.m)}, &g[model.v_index[i]]);
+    ws.f[i] = {cross(Ic.h, a), scale(a, Ic.m)};
+    if (!is_mimic(model, i)) joint_project(model, i, ws.f[i], &g[model.v_index[i]]);
     const int p = model.parent[i];
     if (p < 0) continue;
     const Xform<S>& X = ws.Xup[i];
     ws.Ic[p].m = ws.Ic[p].m + Ic.m;
     ws.Ic[p].h = ws.Ic[p].h + scale(X.r, Ic.m) + mul_T(X.E, Ic.h);
   }
+  detail::add_mimic_forces(model, ws.f, g);
 }
 
 /// Nonlinear effects h(q, v) = C(q, v) v + g(q) = rnea(q, v, 0): Coriolis, centrifugal and

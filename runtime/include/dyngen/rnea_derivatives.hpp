@@ -69,6 +69,53 @@ InertiaVariation<S> apply_variation_T(const Xform<S>& X, const InertiaVariation<
   return {symmetric.h, symmetric.I, apply_force_T(X, B.p)};
 }
 
+template <class S>
+void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
+                      std::span<const S> qd, std::span<const S> qdd, std::span<S> dtau_dq,
+                      std::span<S> dtau_dv);
+
+namespace detail {
+
+/// rnea_derivatives of a robot with mimic joints: its joints' derivatives at q_joints = G q +
+/// offset, G v, G a, then G^T d tau_joints G (G from the coordinates to the joints; a mirroring
+/// mimic joint's entry of G is 1, its axis negated in independent_joints).
+template <class S>
+void mimic_rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
+                            std::span<const S> qd, std::span<const S> qdd, std::span<S> dtau_dq,
+                            std::span<S> dtau_dv) {
+  const Model<S>& joints = *ws.joints_model;
+  TraceHook<S>::enter(-1, Pass::Product);
+  const auto law = [&](int i, const S& x, bool position) {
+    if (!is_mimic(model, i) || model.mimic_mirrors[i]) return x;
+    const S y = model.mimic_multiplier[i] * x;
+    return position ? y + model.mimic_offset[i] : y;
+  };
+  for (int i = 0; i < model.nbodies; ++i) {
+    for (int e = 0; e < joint_nq(model.joint_type[i]); ++e)
+      ws.q_joints[joints.q_index[i] + e] = law(i, q[model.q_index[i] + e], true);
+    for (int d = 0; d < joint_nv(model.joint_type[i]); ++d) {
+      ws.v_joints[joints.v_index[i] + d] = law(i, qd[model.v_index[i] + d], false);
+      ws.a_joints[joints.v_index[i] + d] = law(i, qdd[model.v_index[i] + d], false);
+    }
+  }
+  rnea_derivatives<S>(joints, *ws.joints, ws.q_joints, ws.v_joints, ws.a_joints, ws.dq_joints,
+                      ws.dv_joints);
+  TraceHook<S>::enter(-1, Pass::Product);
+  const int n = model.nv, nf = joints.nv;
+  for (std::size_t e = 0; e < dtau_dq.size(); ++e) dtau_dq[e] = S(0), dtau_dv[e] = S(0);
+  for (int i = 0; i < model.nbodies; ++i)
+    for (int d = 0; d < joint_nv(model.joint_type[i]); ++d)
+      for (int j = 0; j < model.nbodies; ++j)
+        for (int e = 0; e < joint_nv(model.joint_type[j]); ++e) {
+          const std::size_t full = row_major(nf, joints.v_index[i] + d, joints.v_index[j] + e);
+          const std::size_t out = row_major(n, model.v_index[i] + d, model.v_index[j] + e);
+          dtau_dq[out] = dtau_dq[out] + law(i, law(j, ws.dq_joints[full], false), false);
+          dtau_dv[out] = dtau_dv[out] + law(i, law(j, ws.dv_joints[full], false), false);
+        }
+}
+
+}  // namespace detail
+
 /// d tau / dq and d tau / dv of rnea(q, v, a), row-major nv x nv: dtau_dq[i * nv + j] =
 /// d tau_i / dq_j. The columns of a free joint are its tangent directions: q moved to q (+) d,
 /// the body's pose M times exp(d) with d = (linear, angular) in the body's own frame, the
@@ -77,6 +124,8 @@ template <class S>
 void rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                       std::span<const S> qd, std::span<const S> qdd, std::span<S> dtau_dq,
                       std::span<S> dtau_dv) {
+  if (!model.mimic.empty())
+    return detail::mimic_rnea_derivatives(model, ws, q, qd, qdd, dtau_dq, dtau_dv);
   const Motion<S> a0 = base_acceleration(model);
   // in the bodies' frames, or (a deep robot) all in base coordinates, the rigid motion of a
   // subtree then being the same for every body of it

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "dyngen/joint.hpp"
@@ -16,6 +17,30 @@ inline std::size_t row_major(int n, int i, int j) {
   return static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
 }
 
+/// The model with each mimic joint on a coordinate of its own (Model::mimic cleared, a mimic
+/// joint without armature): the joints whose derivatives rnea_derivatives maps to the
+/// coordinates of a robot with mimic joints. A mirroring mimic joint (q_i = -q_p) turns about
+/// its axis negated instead, so that its coordinate is q_p itself and its sine that of q_p,
+/// as in the model (joint.hpp's angle_sincos).
+template <class S>
+Model<S> independent_joints(const Model<S>& model) {
+  Model<S> m = model;
+  for (int i = 0; i < m.nbodies; ++i)
+    if (is_mimic(model, i) && model.mimic_mirrors[i])
+      m.joint_axis[i] = scale(m.joint_axis[i], S(-1));
+  m.mimic.clear(), m.mimic_multiplier.clear(), m.mimic_offset.clear(), m.mimic_mirrors.clear();
+  m.nq = m.nv = 0;
+  m.armature.clear();
+  for (int i = 0; i < m.nbodies; ++i) {
+    m.q_index[i] = m.nq, m.v_index[i] = m.nv;
+    m.nq += joint_nq(m.joint_type[i]);
+    m.nv += joint_nv(m.joint_type[i]);
+    for (int d = 0; d < joint_nv(m.joint_type[i]) && !model.armature.empty(); ++d)
+      m.armature.push_back(is_mimic(model, i) ? S(0) : model.armature[model.v_index[i] + d]);
+  }
+  return m;
+}
+
 template <class S>
 struct Workspace {
   explicit Workspace(const Model<S>& model)
@@ -27,7 +52,9 @@ struct Workspace {
         alpha(model.nv), beta(model.nv), pair_X(12 * static_cast<std::size_t>(model.nbodies)),
         pair_motion(24 * static_cast<std::size_t>(model.nv)), pair_force(pair_motion.size()),
         column_body(model.nv), first_column(model.nbodies + 1, model.nv),
-        subtree_end(model.nbodies, 0), qdd(model.nv) {
+        subtree_end(model.nbodies, 0), shares_column(model.nbodies, 0), qdd(model.nv) {
+    for (int i = 0; i < model.nbodies; ++i)
+      if (is_mimic(model, i)) shares_column[i] = shares_column[model.mimic[i]] = 1;
     // the columns of the joints in body i's subtree are [v_index[i], subtree_end[i])
     for (int i = model.nbodies - 1; i >= 0; --i) {
       subtree_end[i] = std::max(subtree_end[i], model.v_index[i] + joint_nv(model.joint_type[i]));
@@ -52,6 +79,10 @@ struct Workspace {
             c > k ? c - 1 : p < 0 ? -1 : model.v_index[p] + joint_nv(model.joint_type[p]) - 1;
       }
     }
+    // a mimic joint couples its primary's column to its own path, which need not be the
+    // primary's: M is factorised as dense
+    if (!model.mimic.empty())
+      for (int c = 0; c < model.nv; ++c) column_parent[c] = c - 1;
     const std::size_t columns =
         static_cast<std::size_t>(model.nbodies) * static_cast<std::size_t>(model.nv);
     pA_columns.resize(columns);
@@ -80,7 +111,29 @@ struct Workspace {
           product_begin[d].push_back(static_cast<int>(product_rows[d].size()));
         }
       }
+    if (!model.mimic.empty()) couple_buffers(model);
     has_matrix_buffers = true;
+  }
+
+  /// A robot with mimic joints: every column's row of d tau may be non-zero (its columns couple
+  /// branches), and its joints as independent ones, for rnea_derivatives.
+  void couple_buffers(const Model<S>& model) {
+    for (int d = 0; d < 2; ++d) {
+      product_begin[d].assign(1, 0);
+      product_rows[d].clear();
+      for (int c = 0; c < model.nv; ++c) {
+        for (int k = 0; k < model.nv; ++k) product_rows[d].push_back(k);
+        product_begin[d].push_back(static_cast<int>(product_rows[d].size()));
+      }
+    }
+    joints_model = std::make_unique<Model<S>>(independent_joints(model));
+    joints = std::make_unique<Workspace>(*joints_model);
+    const std::size_t nf = static_cast<std::size_t>(joints_model->nv);
+    q_joints.resize(static_cast<std::size_t>(joints_model->nq));
+    v_joints.resize(nf);
+    a_joints.resize(nf);
+    dq_joints.resize(nf * nf);
+    dv_joints.resize(nf * nf);
   }
 
   /// Above this many degrees of freedom the workspace has no matrix buffers (they grow with
@@ -121,6 +174,9 @@ struct Workspace {
   std::vector<int> column_body, first_column;  // [nv], [nbodies + 1]
   // minv: per body and column of M^-1 (body * nv + column), pA, a and u of the unit torque
   std::vector<int> subtree_end;          // [nbodies]
+  // 1 where body i's column is shared with a mimic joint (its own, or its primary's): the
+  // algorithms add its entries instead of writing them
+  std::vector<char> shares_column;       // [nbodies]
   std::vector<Force<S>> pA_columns;      // [nbodies * nv] if nv <= max_matrix_nv
   std::vector<Motion<S>> a_columns;      // [nbodies * nv] if nv <= max_matrix_nv
   std::vector<S> u_columns;              // [nbodies * nv] if nv <= max_matrix_nv
@@ -135,6 +191,11 @@ struct Workspace {
   // and of d tau / dv [1]
   std::vector<int> product_begin[2];     // [nv + 1] if nv <= max_matrix_nv
   std::vector<int> product_rows[2];      // [sum of path and subtree lengths] if nv <= max_matrix_nv
+  // a robot with mimic joints (if nv <= max_matrix_nv): its joints as independent ones, their
+  // workspace, and their q, v, a and d tau / d(q, v)
+  std::unique_ptr<Model<S>> joints_model;
+  std::unique_ptr<Workspace> joints;
+  std::vector<S> q_joints, v_joints, a_joints, dq_joints, dv_joints;
 };
 
 }  // namespace dyngen

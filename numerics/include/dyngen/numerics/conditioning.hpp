@@ -53,6 +53,24 @@ S max_abs(const ArticulatedInertia<S>& A) {
   return m;
 }
 
+/// The forward dynamics of a robot with mimic joints factorise M = L^T D L (aba.hpp): its
+/// smallest pivot D_c against M's diagonal entry, into c.pivot_min and c.pivot_joint.
+inline void mimic_pivots(const Model<long double>& ml, Workspace<long double>& ws,
+                         const std::vector<long double>& q, Conditioning& c) {
+  const int n = ml.nv;
+  c.factorised = true;
+  std::vector<long double> M(static_cast<std::size_t>(n) * n), Dinv(n), diagonal(n);
+  crba<long double>(ml, ws, q, M);
+  for (int k = 0; k < n; ++k) diagonal[k] = M[row_major(n, k, k)];
+  factor_ltdl<long double>(n, ws.column_parent.data(), M, Dinv);
+  for (int i = 0; i < ml.nbodies; ++i)
+    for (int d = 0; d < joint_nv(ml.joint_type[i]) && !is_mimic(ml, i); ++d) {
+      const int k = ml.v_index[i] + d;
+      const double pivot = diagonal[k] > 0 ? static_cast<double>(1 / Dinv[k] / diagonal[k]) : 0.0;
+      if (pivot < c.pivot_min) c.pivot_min = pivot, c.pivot_joint = ml.joint_name[i];
+    }
+}
+
 /// The smallest eigenvalue of a symmetric 3x3: a ball joint's D, the pivot block ABA inverts.
 template <class S>
 S smallest_eigenvalue(const Sym3<S>& A) {
@@ -181,6 +199,10 @@ inline Conditioning estimate_conditioning(const Model<double>& model, int sample
     }
 
     if (!with_aba) continue;
+    if (!ml.mimic.empty()) {
+      detail::mimic_pivots(ml, ws, q, c);
+      continue;
+    }
     aba<long double>(ml, ws, q, qd, tau, qdd);
     for (int i = 0; i < ml.nbodies; ++i) {
       const long double size = detail::max_abs(ws.IA[i]);

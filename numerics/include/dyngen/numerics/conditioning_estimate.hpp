@@ -25,6 +25,7 @@ struct Conditioning {
                              // free joint the smallest eigenvalue of IA_i instead of D_i
   std::string pivot_joint;   // the joint where it was found
   double inertia_range = 1;  // largest / smallest max|IA_i| over bodies and samples (ABA)
+  bool factorised = false;   // mimic joints: the pivots are those of M = L^T D L, D_c / M_cc
   int float_unrepresentable = 0;  // non-zero model constants outside float's normal range
 
   /// Decimal digits that rounding errors may be amplified by: log10 of the larger of cond(M)

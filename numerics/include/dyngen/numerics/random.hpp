@@ -65,6 +65,7 @@ struct State {
 inline State random_state(const Model<double>& model, Random& rng) {
   State s;
   for (int i = 0; i < model.nbodies; ++i) {
+    if (is_mimic(model, i)) continue;  // its primary's entry
     const int o = quaternion_offset(model.joint_type[i]);
     if (o < 0) {
       s.q.push_back(rng.uniform(-std::numbers::pi, std::numbers::pi));
