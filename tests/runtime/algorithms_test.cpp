@@ -152,12 +152,9 @@ std::vector<Case> cases() {
                    return gen::load_robot(test::model_path("coverage/armature_chain.yaml")).model;
                  }, 9});
   for (const bool floating : {false, true})
-    all.push_back({floating ? "ball_chain_floating" : "ball_chain", [=] {
-                     gen::LoadOptions options;
-                     options.floating_base = floating;
-                     return gen::load_robot(test::model_path("coverage/ball_chain.yaml"), options)
-                         .model;
-                   }, floating ? 12u : 11u});
+    all.push_back({floating ? "ball_chain_floating" : "ball_chain",
+                   [=] { return test::load_model("coverage/ball_chain.yaml", floating); },
+                   floating ? 12u : 11u});
   all.push_back({"ur5_armature_floating", [] {
                    gen::LoadOptions options;
                    options.floating_base = true;

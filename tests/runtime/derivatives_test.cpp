@@ -79,12 +79,8 @@ std::vector<Case> cases() {
                    return gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
                  }});
   for (const bool floating : {false, true})
-    all.push_back({floating ? "ball_chain_floating" : "ball_chain", [=] {
-                     gen::LoadOptions options;
-                     options.floating_base = floating;
-                     return gen::load_robot(test::model_path("coverage/ball_chain.yaml"), options)
-                         .model;
-                   }});
+    all.push_back({floating ? "ball_chain_floating" : "ball_chain",
+                   [=] { return test::load_model("coverage/ball_chain.yaml", floating); }});
   for (const test::RobotFile& robot : test::robot_files()) {
     all.push_back({robot.name, [=] { return test::load_for_aba(robot); }});
     all.push_back({robot.name + "_floating", [=] { return test::load_for_aba(robot, true); }});

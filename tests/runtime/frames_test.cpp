@@ -159,12 +159,8 @@ std::vector<Case> cases() {
                    return gen::load_robot(test::model_path("coverage/all_joints.urdf"), options)
                        .model;
                  }});
-  all.push_back({"ball_chain", [] {
-                   gen::LoadOptions options;
-                   options.all_frames = true;
-                   return gen::load_robot(test::model_path("coverage/ball_chain.yaml"), options)
-                       .model;
-                 }});
+  all.push_back(
+      {"ball_chain", [] { return test::load_model("coverage/ball_chain.yaml", false, true); }});
   for (const std::string robot : {"ur5", "solo12", "atlas"})
     for (const bool floating : {false, true})
       all.push_back({robot + (floating ? "_floating" : ""), [=] {

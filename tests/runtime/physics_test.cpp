@@ -101,9 +101,7 @@ std::vector<Case> cases() {
   all.push_back({"all_joints", [] {
                    return gen::load_robot(test::model_path("coverage/all_joints.urdf")).model;
                  }});
-  all.push_back({"ball_chain", [] {
-                   return gen::load_robot(test::model_path("coverage/ball_chain.yaml")).model;
-                 }});
+  all.push_back({"ball_chain", [] { return test::load_model("coverage/ball_chain.yaml"); }});
   all.push_back({"planar_chain_12", [] { return test::make_random_chain(12, 31, true); }});
   all.push_back({"spatial_chain_12", [] { return test::make_random_chain(12, 32, false); }});
   return all;

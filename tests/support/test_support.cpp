@@ -116,6 +116,13 @@ std::vector<RobotFile> robot_files() {
   return robots;
 }
 
+Model<double> load_model(const std::string& file, bool floating_base, bool all_frames) {
+  gen::LoadOptions options;
+  options.floating_base = floating_base;
+  options.all_frames = all_frames;
+  return gen::load_robot(model_path(file), options).model;
+}
+
 Model<double> load_for_aba(const RobotFile& robot, bool floating_base) {
   gen::LoadOptions options = robot.aba_options;
   options.floating_base = floating_base;

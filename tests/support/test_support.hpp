@@ -59,6 +59,11 @@ std::vector<RobotFile> robot_files();
 /// Loads a robot file with its ABA options, on a floating base if asked.
 Model<double> load_for_aba(const RobotFile& robot, bool floating_base = false);
 
+/// The model of a file in tests/models with the default options, on a floating base and with a
+/// frame on every link if asked.
+Model<double> load_model(const std::string& file, bool floating_base = false,
+                         bool all_frames = false);
+
 // ---- dense definitions (Featherstone's spatial_v2), independent of the runtime's kernels ----
 
 template <class S>

@@ -51,7 +51,7 @@ struct JointSpec {
   double armature = 0;
   /// A mimic joint (URDF's <mimic>) names the joint it follows, q = multiplier q_mimic + offset;
   /// it then has no coordinate of its own (Model::mimic).
-  std::string mimic;
+  std::string mimic{};
   double multiplier = 1, offset = 0;
 };
 
