@@ -68,10 +68,13 @@ def test_matches_the_runtime():
 
 
 def robot_name():
-    """The robot's name in the robot file, as Python reads bytes that may not be UTF-8 (invalid
-    ones as \\xNN)."""
+    """The robot's name in the robot file (a URDF's <robot name>, a chain spec's plain name:), as
+    Python reads bytes that may not be UTF-8 (invalid ones as \\xNN)."""
     with open(os.environ["DYNGEN_ROBOT"], "rb") as f:
-        name = re.search(rb'<robot\s[^>]*?name="([^"]*)"', f.read()).group(1)
+        text = f.read()
+    found = (re.search(rb'<robot\s[^>]*?name="([^"]*)"', text)
+             or re.search(rb"^name: (\S+)$", text, re.M))
+    name = found.group(1)
     # the file's character references: &quot;, &#10;, &#x2028; (html's unescape reads XML's)
     name = html.unescape(name.decode("utf-8", "surrogateescape")).encode("utf-8", "surrogateescape")
     return name.decode("utf-8", "backslashreplace")
