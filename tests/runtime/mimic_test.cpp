@@ -189,6 +189,7 @@ TEST_P(Mimic, DerivativesAreTheChainRuleOfTheJointsAndOfAba) {
 INSTANTIATE_TEST_SUITE_P(Robots, Mimic,
                          ::testing::Values(std::pair{"coverage/mimic_gripper.urdf", false},
                                            std::pair{"coverage/mimic_gripper.urdf", true},
+                                           std::pair{"coverage/mimic_mirror.urdf", false},
                                            std::pair{"panda.urdf", false},
                                            std::pair{"panda.urdf", true},
                                            std::pair{"pr2.urdf", false},
