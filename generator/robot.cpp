@@ -80,34 +80,37 @@ std::vector<int> joints_with_massless_subtree(const Model<double>& model) {
 
 namespace {
 
+/// Sample `sample` of joints_moving_no_mass: all zeros first, then angles from raw mt19937_64
+/// bits (the same samples on every standard library); quaternions the identity, as any
+/// rotation will do.
+void sample_configuration(const Model<double>& model, std::mt19937_64& rng, int sample,
+                          std::vector<double>& q) {
+  for (double& x : q)
+    x = sample == 0 ? 0.0 : -3.14159 + 6.28318 * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  for (int i = 0; i < model.nbodies; ++i)
+    if (const int o = quaternion_offset(model.joint_type[i]); o >= 0) {
+      double* quaternion = &q[model.q_index[i] + o];
+      quaternion[0] = 1, quaternion[1] = quaternion[2] = quaternion[3] = 0;
+    }
+}
+
 /// joints_moving_no_mass of a robot with mimic joints, whose forward dynamics factorise M:
 /// the joints whose column's pivot D of M = L^T D L is at most 1e-12 of M's diagonal entry.
 std::vector<int> columns_moving_no_mass(const Model<double>& model) {
-  const int n = model.nv;
   Workspace<double> ws(model);
   std::mt19937_64 rng(20261121);
-  std::vector<double> q(model.nq), M(static_cast<std::size_t>(n) * n), Dinv(n);
+  std::vector<double> q(model.nq);
   std::vector<int> joints;
   for (int sample = 0; sample < 16; ++sample) {
-    for (double& x : q) x = sample == 0 ? 0.0 : -3.14159 + 6.28318 * static_cast<double>(rng() >> 11) * 0x1.0p-53;
-    for (int i = 0; i < model.nbodies; ++i)
-      if (const int o = quaternion_offset(model.joint_type[i]); o >= 0)
-        std::fill_n(q.begin() + model.q_index[i] + o, 4, 0.0), q[model.q_index[i] + o] = 1;
-    crba<double>(model, ws, q, M);
-    std::vector<double> diagonal(n);
-    for (int c = 0; c < n; ++c) diagonal[c] = M[row_major(n, c, c)];
-    factor_ltdl<double>(n, ws.column_parent.data(), M, Dinv);
+    sample_configuration(model, rng, sample, q);
+    const std::vector<double> pivots = numerics::factorised_pivots(model, ws, q);
     for (int i = 0; i < model.nbodies; ++i) {
       if (is_mimic(model, i) || std::count(joints.begin(), joints.end(), i)) continue;
-      for (int d = 0; d < joint_nv(model.joint_type[i]); ++d) {
-        const int c = model.v_index[i] + d;
-        const double D = 1 / Dinv[c];
-        if (!std::isnan(D) &&
-            !(D > 1e-12 * diagonal[c] && D >= std::numeric_limits<double>::min())) {
+      for (int d = 0; d < joint_nv(model.joint_type[i]); ++d)
+        if (!std::isnan(pivots[model.v_index[i] + d]) && !(pivots[model.v_index[i] + d] > 1e-12)) {
           joints.push_back(i);
           break;
         }
-      }
     }
   }
   std::sort(joints.begin(), joints.end());
@@ -120,18 +123,11 @@ std::vector<int> joints_moving_no_mass(const Model<double>& model) {
   if (!model.mimic.empty()) return columns_moving_no_mass(model);
   const int n = model.nv;
   Workspace<double> ws(model);
-  // angles from raw mt19937_64 bits: the same samples on every standard library
   std::mt19937_64 rng(20261121);
-  auto angle = [&rng] { return -3.14159 + 6.28318 * static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   std::vector<double> q(model.nq), v(n, 0.0), tau(n, 0.0), qdd(n);
   std::vector<bool> flagged(model.nbodies, false);
   for (int sample = 0; sample < 16; ++sample) {
-    for (double& x : q) x = sample == 0 ? 0.0 : angle();
-    for (int i = 0; i < model.nbodies; ++i)
-      if (const int o = quaternion_offset(model.joint_type[i]); o >= 0) {  // any rotation will do
-        double* quaternion = &q[model.q_index[i] + o];
-        quaternion[0] = 1, quaternion[1] = quaternion[2] = quaternion[3] = 0;
-      }
+    sample_configuration(model, rng, sample, q);
     aba<double>(model, ws, q, v, tau, qdd);
     // the composite inertias of CRBA (with ABA's joint transforms) give M's diagonal in O(nv),
     // where M itself takes O(nv^2) memory and up to O(nv^2) time

@@ -16,6 +16,7 @@ namespace detail {
 /// its primary's entry, once the backward pass has written that entry.
 template <class S>
 void add_mimic_forces(const Model<S>& model, const std::vector<Force<S>>& f, std::span<S> tau) {
+  if (model.mimic.empty()) return;
   for (int i = 0; i < model.nbodies; ++i) {
     if (!is_mimic(model, i)) continue;
     TraceHook<S>::enter(i, Pass::Backward);
@@ -107,8 +108,9 @@ void gravity(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std:
     TraceHook<S>::enter(i, Pass::Backward);
     const RigidInertia<S>& Ic = ws.Ic[i];
     const Vec3<S>& a = ws.a[i].lin;
-    ws.f[i] = {cross(Ic.h, a), scale(a, Ic.m)};
-    if (!is_mimic(model, i)) joint_project(model, i, ws.f[i], &g[model.v_index[i]]);
+    const Force<S> f{cross(Ic.h, a), scale(a, Ic.m)};
+    if (is_mimic(model, i)) ws.f[i] = f;  // added to its primary's entry below
+    else joint_project(model, i, f, &g[model.v_index[i]]);
     const int p = model.parent[i];
     if (p < 0) continue;
     const Xform<S>& X = ws.Xup[i];

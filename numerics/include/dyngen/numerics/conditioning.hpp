@@ -53,21 +53,33 @@ S max_abs(const ArticulatedInertia<S>& A) {
   return m;
 }
 
-/// The forward dynamics of a robot with mimic joints factorise M = L^T D L (aba.hpp): its
-/// smallest pivot D_c against M's diagonal entry, into c.pivot_min and c.pivot_joint.
+}  // namespace detail
+
+/// The pivots of the forward dynamics of a robot with mimic joints, which factorise M = L^T D L
+/// (aba.hpp): D_k / M_kk of each column k at q.
+template <class S>
+std::vector<S> factorised_pivots(const Model<S>& model, Workspace<S>& ws, const std::vector<S>& q) {
+  const int n = model.nv;
+  std::vector<S> M(static_cast<std::size_t>(n) * n), Dinv(n), pivots(n);
+  crba<S>(model, ws, q, M);
+  for (int k = 0; k < n; ++k) pivots[k] = M[row_major(n, k, k)];
+  factor_ltdl<S>(n, ws.column_parent.data(), M, Dinv);
+  for (int k = 0; k < n; ++k) pivots[k] = 1 / Dinv[k] / pivots[k];
+  return pivots;
+}
+
+namespace detail {
+
+/// The smallest factorised pivot at q into c.pivot_min and c.pivot_joint.
 inline void mimic_pivots(const Model<long double>& ml, Workspace<long double>& ws,
                          const std::vector<long double>& q, Conditioning& c) {
-  const int n = ml.nv;
   c.factorised = true;
-  std::vector<long double> M(static_cast<std::size_t>(n) * n), Dinv(n), diagonal(n);
-  crba<long double>(ml, ws, q, M);
-  for (int k = 0; k < n; ++k) diagonal[k] = M[row_major(n, k, k)];
-  factor_ltdl<long double>(n, ws.column_parent.data(), M, Dinv);
+  const std::vector<long double> pivots = factorised_pivots(ml, ws, q);
   for (int i = 0; i < ml.nbodies; ++i)
     for (int d = 0; d < joint_nv(ml.joint_type[i]) && !is_mimic(ml, i); ++d) {
-      const int k = ml.v_index[i] + d;
-      const double pivot = diagonal[k] > 0 ? static_cast<double>(1 / Dinv[k] / diagonal[k]) : 0.0;
-      if (pivot < c.pivot_min) c.pivot_min = pivot, c.pivot_joint = ml.joint_name[i];
+      const long double pivot = pivots[ml.v_index[i] + d];
+      const double p = pivot > 0 ? static_cast<double>(pivot) : 0.0;  // NaN too
+      if (p < c.pivot_min) c.pivot_min = p, c.pivot_joint = ml.joint_name[i];
     }
 }
 
