@@ -3,11 +3,15 @@
 // (mj_fullM), inverse dynamics (mj_inverse's qfrc_inverse), forward dynamics (mj_forward's
 // qacc) and site placements must match the runtime's on the model dyngen read, to a norm-wise
 // relative error of 1e-9, at seeded random states. The files cover the orientation forms, angle
-// units, default classes, multi-joint bodies, ref, armature, ball joints and inertia from geoms.
+// units, default classes, multi-joint bodies, ref, armature, ball joints and inertia from geoms;
+// two of MuJoCo Menagerie's models are read as published (MuJoCo gets stand-ins for their meshes).
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <unistd.h>
+
 #include <array>
+#include <filesystem>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -30,15 +34,26 @@ struct MjDeleter {
 
 class MjcfPeer : public ::testing::TestWithParam<const char*> {};
 
+/// "menagerie/go2.xml" -> "go2"
+std::string file_name(const std::string& file) {
+  const std::string stem = file.substr(file.rfind('/') + 1);
+  return stem.substr(0, stem.find('.'));
+}
+
 TEST_P(MjcfPeer, DynamicsAndSitesMatchMujocosOwnCompilation) {
   const std::string path = model_path(std::string("mjcf/") + GetParam());
   gen::LoadOptions options;
   options.all_frames = true;
   const gen::Robot robot = gen::load_robot(path, options);
   const Model<double>& model = robot.model;
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("dyngen-mjcf-" + std::to_string(getpid()) + "-" + file_name(GetParam()));
+  std::filesystem::remove_all(dir);
+  const std::string copy = mujoco_peer::mujoco_mjcf(path, dir.string());
   std::array<char, 1000> error{};
   const std::unique_ptr<mjModel, MjDeleter> m(
-      mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size())));
+      mj_loadXML(copy.c_str(), nullptr, error.data(), static_cast<int>(error.size())));
+  std::filesystem::remove_all(dir);
   ASSERT_TRUE(m) << error.data();
   m->opt.disableflags |= mjDSBL_CONSTRAINT | mjDSBL_EQUALITY | mjDSBL_FRICTIONLOSS |
                          mjDSBL_LIMIT | mjDSBL_CONTACT | mjDSBL_PASSIVE | mjDSBL_ACTUATION;
@@ -109,10 +124,14 @@ TEST_P(MjcfPeer, DynamicsAndSitesMatchMujocosOwnCompilation) {
               GetParam(), nv, crba, rnea, aba, sites);
 }
 
-INSTANTIATE_TEST_SUITE_P(Files, MjcfPeer, ::testing::Values("arm.xml", "quadruped.xml", "ball.xml"),
+// Menagerie's files as published (tests/models/README.md): Unitree's go2 (a free base, armature
+// 0.01 on every joint, from default classes) and Franka's panda without its hand (armature 0.1,
+// fullinertia), both with mesh geoms.
+INSTANTIATE_TEST_SUITE_P(Files, MjcfPeer,
+                         ::testing::Values("arm.xml", "quadruped.xml", "ball.xml",
+                                           "menagerie/go2.xml", "menagerie/panda_nohand.xml"),
                          [](const ::testing::TestParamInfo<const char*>& info) {
-                           std::string name = info.param;
-                           return name.substr(0, name.find('.'));
+                           return file_name(info.param);
                          });
 
 }  // namespace

@@ -6,10 +6,14 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <initializer_list>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "test_support.hpp"
 
@@ -199,6 +203,64 @@ MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& 
   doc.Print(&printer);
   result.text = printer.CStr();
   return result;
+}
+
+namespace {
+
+/// A tetrahedron of 1 cm edges as a mesh file of MuJoCo's: binary STL or Wavefront OBJ.
+void write_tetrahedron(const std::filesystem::path& file) {
+  std::filesystem::create_directories(file.parent_path());
+  const float v[4][3] = {{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, {0, 0, 0.01f}};
+  const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};  // outward
+  std::ofstream out(file, std::ios::binary);
+  if (file.extension() == ".obj" || file.extension() == ".OBJ") {
+    for (const auto& p : v) out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+    for (const auto& f : faces) out << "f " << f[0] + 1 << ' ' << f[1] + 1 << ' ' << f[2] + 1 << '\n';
+  } else {  // STL: 80-byte header, count, then per face a normal, 3 vertices and 2 bytes
+    const std::string header(80, ' ');
+    const std::uint32_t count = 4;
+    out.write(header.data(), 80).write(reinterpret_cast<const char*>(&count), 4);
+    for (const auto& f : faces) {
+      const float normal[3] = {0, 0, 0};  // MuJoCo takes the winding
+      out.write(reinterpret_cast<const char*>(normal), sizeof normal);
+      for (int k : f) out.write(reinterpret_cast<const char*>(v[k]), sizeof v[k]);
+      out.write("\0\0", 2);
+    }
+  }
+  if (!out) throw std::runtime_error(file.string() + ": cannot write");
+}
+
+/// Every element named `name` under e, depth first.
+void collect(XMLElement* e, std::string_view name, std::vector<XMLElement*>& found) {
+  for (XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (name == c->Name()) found.push_back(c);
+    collect(c, name, found);
+  }
+}
+
+}  // namespace
+
+std::string mujoco_mjcf(const std::string& path, const std::string& dir) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS)
+    throw std::runtime_error(path + ": " + doc.ErrorStr());
+  std::filesystem::create_directories(dir);
+  XMLElement* root = doc.RootElement();
+  std::vector<XMLElement*> compilers, meshes, options;
+  collect(root, "compiler", compilers);
+  collect(root, "mesh", meshes);
+  collect(root, "option", options);
+  std::filesystem::path meshdir = dir;
+  for (const XMLElement* c : compilers)
+    for (const char* key : {"assetdir", "meshdir"})
+      if (c->Attribute(key)) meshdir = std::filesystem::path(dir) / c->Attribute(key);
+  for (const XMLElement* mesh : meshes)
+    if (mesh->Attribute("file")) write_tetrahedron(meshdir / mesh->Attribute("file"));
+  for (XMLElement* option : options) option->DeleteAttribute("integrator");
+  const std::string copy = (std::filesystem::path(dir) / std::filesystem::path(path).filename());
+  if (doc.SaveFile(copy.c_str()) != tinyxml2::XML_SUCCESS)
+    throw std::runtime_error(copy + ": " + doc.ErrorStr());
+  return copy;
 }
 
 std::vector<double> qpos(const mjModel* m, const Model<double>& model, std::span<const int> joint,

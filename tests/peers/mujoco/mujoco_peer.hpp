@@ -47,6 +47,13 @@ struct MujocoUrdf {
 MujocoUrdf mujoco_urdf(const std::string& path, const std::vector<std::string>& locked,
                        bool floating_base);
 
+/// An MJCF file as MuJoCo 2.2.2 compiles it, written into `dir`: each <mesh> file replaced by a
+/// small tetrahedron (the files of published models are often not at hand, and a body whose
+/// <inertial> is given takes nothing from its meshes), and <option integrator> dropped (MuJoCo 3's
+/// "implicitfast" is unknown to 2.2, and the integrator plays no part in M, tau or qacc).
+/// Returns the path of the copy. Throws std::runtime_error when the file cannot be read.
+std::string mujoco_mjcf(const std::string& path, const std::string& dir);
+
 /// Rotation and position of MuJoCo body `body` in the frame of its ancestor `ancestor`, at
 /// q = 0 of the joints between them.
 std::pair<Eigen::Matrix3d, Eigen::Vector3d> relative_pose(const mjModel* m, int body, int ancestor);
