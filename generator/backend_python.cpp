@@ -92,14 +92,19 @@ std::string python_attributes(const Model<double>& model) {
     if (const int o = quaternion_offset(model.joint_type[i]); o >= 0)
       quaternions += fmt::format("{}{}", quaternions.empty() ? "" : ", ", model.q_index[i] + o);
   }
+  std::string armature;
+  for (int k = 0; k < model.nv; ++k)
+    armature += (k ? ", " : "") + literal(model.armature.empty() ? 0.0 : model.armature[k]);
   std::string text = fmt::format(
       "    m.attr(\"joint_names\") = {};\n"
       "    m.attr(\"gravity_acceleration\") = py::make_tuple({}, {}, {});  // m/s^2\n"
       "    m.attr(\"total_mass\") = {};\n"
+      "    // rotor inertia built into M's diagonal, per entry of v (kg m^2 or kg)\n"
+      "    m.attr(\"armature\") = py::make_tuple({});\n"
       "    // q[k:k + 4] is a free or ball joint's unit quaternion (w, x, y, z) for each k\n"
       "    m.attr(\"quaternion_indices\") = py::make_tuple({});\n",
       python_names(velocity_names(model)), literal(g.x), literal(g.y), literal(g.z),
-      literal(mass), quaternions);
+      literal(mass), armature, quaternions);
   std::vector<std::string> frames;
   for (const Frame<double>& f : model.frames) frames.push_back(f.name);
   if (!frames.empty())

@@ -400,7 +400,10 @@ void ResultWriter::write(const State& state, std::size_t s) {
 void ResultWriter::start() {
   std::vector<std::string> joints;
   for (const std::string& name : velocity_names(model_)) joints.push_back(python_text(name));
-  std::string head = json{{"joints", joints}, {"nq", model_.nq}, {"nv", model_.nv}}.dump(2);
+  json fields{{"joints", joints}, {"nq", model_.nq}, {"nv", model_.nv}};
+  if (std::ranges::any_of(model_.armature, [](double a) { return a != 0; }))
+    fields["armature"] = model_.armature;
+  std::string head = fields.dump(2);
   head.resize(head.size() - 2);  // "\n}": the results follow
   put(head + ",\n  \"results\": [");
   started_ = true;

@@ -286,6 +286,12 @@ def test_wrong_inputs_raise_clear_errors():
 
 def test_module_constants():
     assert len(d.joint_names) == d.nv
+    # the rotor inertias as the runtime's model has them (dyngen eval's head, without states)
+    command = [os.environ["DYNGEN"], "eval", os.environ["DYNGEN_ROBOT"], "--states", "-",
+               *shlex.split(os.environ.get("DYNGEN_ROBOT_OPTIONS", ""))]
+    head = json.loads(subprocess.run(command, input="[]", capture_output=True, text=True,
+                                     check=True).stdout)
+    assert list(d.armature) == head.get("armature", [0.0] * d.nv)
     assert d.total_mass > 0
     assert len(d.gravity_acceleration) == 3
     assert d.lanes in (2, 4, 8, 16)
