@@ -290,12 +290,24 @@ std::string armature_words(const Model<double>& model) {
   return comment_lines("Rotor inertias (armature, kg m^2 or kg) are built into M: " + text + ".");
 }
 
+std::map<std::string, std::string> trig_values(const Model<double>& model, const std::string& nq) {
+  const std::vector<int> mimics = own_angle_mimics(model);
+  if (mimics.empty()) return {{"trig_entries", nq}, {"mimic_trig", ""}};
+  std::string text = "The entries after q's hold the sine and cosine of the mimic joints' own angles:";
+  for (std::size_t j = 0; j < mimics.size(); ++j)
+    text += fmt::format("{} [{} + {}] {}", j ? "," : "", nq, j,
+                        safe_text(model.joint_name[mimics[j]]));
+  return {{"trig_entries", fmt::format("{} + {}", nq, mimics.size())},
+          {"mimic_trig", comment_lines(text + ".")}};
+}
+
 std::map<std::string, std::string> header_values(const PackageContext& p, const Dialect& dialect,
                                                  const PackageSummary& summary,
                                                  const std::string& frames,
                                                  const std::string& declarations) {
   const Vec3<double>& g = p.model.gravity;
-  return {{"banner", summary.code_banner},
+  std::map<std::string, std::string> values = trig_values(p.model, dialect.size("nq"));
+  values.insert({{"banner", summary.code_banner},
           {"robot", safe_text(p.robot.name)},
           {"scalar", p.scalar},
           {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
@@ -307,7 +319,8 @@ std::map<std::string, std::string> header_values(const PackageContext& p, const 
           {"arrays", array_docs(p.options.algorithms, free_joint_lines(p.model), dialect)},
           {"frames", frames},
           {"declarations", declarations.empty() ? declarations
-                                                : declarations.substr(0, declarations.size() - 1)}};
+                                                : declarations.substr(0, declarations.size() - 1)}});
+  return values;
 }
 
 }  // namespace dyngen::gen

@@ -154,6 +154,10 @@ std::string joint_name_lines(const Model<double>& model);
 /// The frames' names as initialiser lines, "    \"tool0\",\n" each.
 std::string frame_name_lines(const Model<double>& model);
 
+/// The trig's values in a header: trig_entries, its arrays' length (nq: the size's name, with
+/// the mimic joints' own angles added), and mimic_trig, the comment lines on those entries.
+std::map<std::string, std::string> trig_values(const Model<double>& model, const std::string& nq);
+
 /// The values the language's header template shares: banner, robot, scalar, sizes, gravity,
 /// structure, the arrays' documentation, frames (as frame_declarations gives them) and
 /// declarations.

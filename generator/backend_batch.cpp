@@ -96,6 +96,15 @@ class BatchBackend final : public Backend, public Dialect {
         first, count, first + count - 1, sincos, trig);
   }
 
+  std::string q_entry(int k) const override { return fmt::format("q[{} * lanes + l]", k); }
+  std::string sincos_angle(int k, const std::string& angle, const char* sincos,
+                           const std::string& trig, const std::string& what) const override {
+    return fmt::format(
+        "    for (int l = 0; l < lanes; ++l)  // {4}\n"
+        "        {0}({1}, &{2}sin_q[{3} * lanes + l], &{2}cos_q[{3} * lanes + l]);\n",
+        sincos, angle, trig, k, what);
+  }
+
   // ---- Backend
   void add_function(const PackageContext& p, const TracedFunction& f) override;
 
@@ -181,6 +190,8 @@ void BatchBackend::add_files(std::vector<GeneratedFile>& files, const PackageCon
                                                   {"scalar", p.scalar},
                                                   {"lanes", std::to_string(lanes_)}};
   std::map<std::string, std::string> h = values, cpp = values;
+  h.merge(trig_values(p.model, "nq"));
+  if (h["trig_entries"] != "nq") h["trig_entries"] = "(" + h["trig_entries"] + ")";
   h.insert({{"robot", safe_text(p.robot.name)},
             {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
             {"declarations", declarations_.substr(0, declarations_.size() - 1)}});

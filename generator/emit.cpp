@@ -278,6 +278,7 @@ class CodePrinter {
  private:
   std::string operand(int id) const;
   std::string element(int id) const;
+  int trig_index(int id) const;
   template <class Arg>
   std::string expression(const Node<T>& n, Arg&& arg) const;
   std::string shared_function(std::size_t g) const;
@@ -327,11 +328,7 @@ std::string CodePrinter<T>::operand(int id) const {
     const InputRef& in = program_.graph.inputs[n.input];
     return dialect_.input(in.array, in.index);
   }
-  if (plan_.trig[id]) {
-    const char* function = n.op == Op::Sin ? "sin" : "cos";
-    const int index = program_.graph.inputs[nodes_[n.a].input].index;
-    return dialect_.trig_value(function, index);
-  }
+  if (plan_.trig[id]) return dialect_.trig_value(n.op == Op::Sin ? "sin" : "cos", trig_index(id));
   if (n.op == Op::Result) {  // entry n.input of the results of the call that node n.a made
     const int c = nodes_[n.a].a;
     std::size_t index = static_cast<std::size_t>(n.input);
@@ -347,6 +344,17 @@ std::string CodePrinter<T>::operand(int id) const {
 template <class T>
 std::string CodePrinter<T>::element(int id) const {
   return nodes_[id].op == Op::Const ? dialect_.element(operand(id)) : operand(id);
+}
+
+/// The trig's entry that trig node id reads: its angle's index in q, or nq + j for the j-th
+/// mimic joint's own angle (Program::mimic_angles).
+template <class T>
+int CodePrinter<T>::trig_index(int id) const {
+  const Node<T>& x = nodes_[nodes_[id].a];
+  if (x.op == Op::Input) return program_.graph.inputs[x.input].index;
+  const std::vector<int>& angles = program_.mimic_angles;
+  return model_.nq +
+         static_cast<int>(std::find(angles.begin(), angles.end(), nodes_[id].a) - angles.begin());
 }
 
 /// Shared function g, with its table of each section's constants.
@@ -427,12 +435,14 @@ std::string CodePrinter<T>::prologue() const {
   std::vector<Dialect::Read> read;
   for (const int id : reads) {
     const Node<T>& n = nodes_[id];
-    const InputRef& in = program_.graph.inputs[n.op == Op::Input ? n.input : nodes_[n.a].input];
-    read.push_back({operand(id),
-                    n.op == Op::Input ? in.array
-                                      : fmt::format("{}{}_q", dialect_.trig_member(),
-                                                    n.op == Op::Sin ? "sin" : "cos"),
-                    in.index});
+    if (n.op == Op::Input) {
+      const InputRef& in = program_.graph.inputs[n.input];
+      read.push_back({operand(id), in.array, in.index});
+    } else {
+      read.push_back({operand(id),
+                      fmt::format("{}{}_q", dialect_.trig_member(), n.op == Op::Sin ? "sin" : "cos"),
+                      trig_index(id)});
+    }
   }
   out += dialect_.load(read);
   if (plan_.w_size > 0)
@@ -608,11 +618,9 @@ std::string CodePrinter<T>::sections_body() {
 
 template <class T>
 EmittedCode CodePrinter<T>::print() {
-  code_.angles.assign(static_cast<std::size_t>(model_.nq), false);
+  code_.angles.assign(static_cast<std::size_t>(trig_entries(model_)), false);
   for (std::size_t id = 0; id < nodes_.size(); ++id)
-    if (plan_.trig[id])
-      code_.angles[static_cast<std::size_t>(
-          program_.graph.inputs[nodes_[nodes_[id].a].input].index)] = true;
+    if (plan_.trig[id]) code_.angles[static_cast<std::size_t>(trig_index(static_cast<int>(id)))] = true;
   code_.sections = static_cast<int>(plan_.sections.size());
   code_.shared_functions = static_cast<int>(plan_.groups.size());
   for (const Section& s : plan_.sections) {
@@ -638,22 +646,56 @@ EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Str
       .print();
 }
 
+int trig_entries(const Model<double>& model) {
+  return model.nq + static_cast<int>(own_angle_mimics(model).size());
+}
+
 namespace {
 
+/// The trig's entries that joint_trig fills: the revolute joints' angles in q, and the mimic
+/// joints' own angles after them.
 std::vector<bool> revolute_angles(const Model<double>& model) {
-  std::vector<bool> revolute(model.nq, false);
+  std::vector<bool> revolute(static_cast<std::size_t>(trig_entries(model)), false);
   for (int i = 0; i < model.nbodies; ++i)
-    if (is_revolute(model.joint_type[i])) revolute[model.q_index[i]] = true;
+    if (is_revolute(model.joint_type[i]) && !has_own_angle(model, i))
+      revolute[model.q_index[i]] = true;
+  std::fill(revolute.begin() + model.nq, revolute.end(), true);
   return revolute;
 }
 
-/// dyngen_sincos calls for the marked q entries into `trig` (the trig's name and member access,
-/// "trig." or "trig->"): one array call per run of consecutive ones, which the compiler can
-/// vectorise.
-std::string sincos_calls(const std::vector<bool>& marked, bool single_precision,
-                         const std::string& trig, const Dialect& dialect) {
+/// Mimic joint i's own angle as the runtime computes it in T (joint_position), traced as the
+/// functions are, with the same simplifications, and printed with q_entry(k) for q[k].
+template <class T>
+std::string mimic_angle_text(const Model<double>& model, int i,
+                             const std::function<std::string(int)>& q_entry) {
+  Graph<T> g(true);
+  const Recording<T> recording(g);
+  const Model<Sym<T>> m = model.cast<T>().template cast<Sym<T>>();
+  const int angle = joint_position(m, i, Sym<T>::node(g.input("q", m.q_index[i]))).id;
+  const std::function<std::string(int)> print = [&](int id) -> std::string {
+    const Node<T>& n = g.nodes[id];
+    switch (n.op) {
+      case Op::Const: return literal(n.value);
+      case Op::Input: return q_entry(g.inputs[n.input].index);
+      case Op::Neg: return "-" + print(n.a);
+      case Op::Add: return "(" + print(n.a) + " + " + print(n.b) + ")";
+      case Op::Sub: return "(" + print(n.a) + " - " + print(n.b) + ")";
+      case Op::Mul: return print(n.a) + " * " + print(n.b);
+      default: throw std::logic_error("internal error: a mimic angle of other operations");
+    }
+  };
+  const std::string text = print(angle);
+  const Op top = g.nodes[angle].op;
+  return top == Op::Add || top == Op::Sub ? text.substr(1, text.size() - 2) : text;  // no (...)
+}
+
+/// dyngen_sincos calls for the marked trig entries into `trig` (the trig's name and member
+/// access, "trig." or "trig->"): one array call per run of consecutive angles of q, which the
+/// compiler can vectorise, and one call per mimic joint's own angle.
+std::string sincos_calls(const Model<double>& model, const std::vector<bool>& marked,
+                         bool single_precision, const std::string& trig, const Dialect& dialect) {
   const char* sincos = single_precision ? "dyngen_sincosf" : "dyngen_sincos";
-  const int nq = static_cast<int>(marked.size());
+  const int nq = model.nq;
   std::string out;
   for (int k = 0; k < nq;) {
     if (!marked[k]) {
@@ -664,6 +706,16 @@ std::string sincos_calls(const std::vector<bool>& marked, bool single_precision,
     while (end < nq && marked[end]) ++end;
     out += dialect.sincos_run(k, end - k, sincos, trig);
     k = end;
+  }
+  const std::vector<int> mimics = own_angle_mimics(model);
+  const auto q_entry = [&](int k) { return dialect.q_entry(k); };
+  for (std::size_t j = 0; j < mimics.size(); ++j) {
+    if (!marked[nq + j]) continue;
+    const int i = mimics[j];
+    const std::string angle = single_precision ? mimic_angle_text<float>(model, i, q_entry)
+                                               : mimic_angle_text<double>(model, i, q_entry);
+    out += dialect.sincos_angle(nq + static_cast<int>(j), angle, sincos, trig,
+                                "mimic joint " + safe_text(model.joint_name[i]));
   }
   return out;
 }
@@ -683,6 +735,12 @@ std::string Dialect::kernel_call(const KernelRecord& /*call*/, std::vector<std::
   return wrapped_call(kernel, arguments);
 }
 
+std::string Dialect::sincos_angle(int k, const std::string& angle, const char* sincos,
+                                  const std::string& trig, const std::string& what) const {
+  return fmt::format("    {}({}, &{}sin_q[{}], &{}cos_q[{}]);  // {}\n", sincos, angle, trig, k,
+                     trig, k, what);
+}
+
 std::string Dialect::sincos_run(int first, int count, const char* sincos,
                                 const std::string& trig) const {
   if (count == 1) return fmt::format("    {1}(q[{0}], &{2}sin_q[{0}], &{2}cos_q[{0}]);\n", first, sincos, trig);
@@ -696,8 +754,8 @@ const std::vector<std::string>& Dialect::compiler(const Toolchain& toolchain) co
 
 std::string emit_joint_trig(const Model<double>& model, bool single_precision,
                             const Dialect& dialect) {
-  const std::string out =
-      sincos_calls(revolute_angles(model), single_precision, dialect.trig_member(), dialect);
+  const std::string out = sincos_calls(model, revolute_angles(model), single_precision,
+                                       dialect.trig_member(), dialect);
   if (out.empty())
     return fmt::format("    {};  // no revolute joint\n    {};\n", dialect.discard("q"),
                        dialect.discard("trig"));
@@ -710,7 +768,7 @@ std::string emit_trig_fill(const Model<double>& model, bool single_precision,
       std::find(angles.begin(), angles.end(), true) == angles.end())
     return fmt::format("    {}(q, {});\n", dialect.joint_trig(), dialect.trig_argument());
   std::string out = "    // the angles this function reads\n";
-  return out.append(sincos_calls(angles, single_precision, "trig.", dialect));
+  return out.append(sincos_calls(model, angles, single_precision, "trig.", dialect));
 }
 
 template OpCounts count_ops<double>(const Program<double>&, bool);

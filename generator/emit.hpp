@@ -154,6 +154,12 @@ class Dialect {
   /// dyngen_sincos (sincos: its name) of q[first .. first + count) into trig's sin_q and cos_q.
   virtual std::string sincos_run(int first, int count, const char* sincos,
                                  const std::string& trig) const;
+  /// q[k] in joint_trig, for the angles of mimic joints.
+  virtual std::string q_entry(int k) const { return fmt::format("q[{}]", k); }
+  /// dyngen_sincos of `angle` (an expression of q_entry) into the trig's entry k; `what` names
+  /// the angle in a comment.
+  virtual std::string sincos_angle(int k, const std::string& angle, const char* sincos,
+                                   const std::string& trig, const std::string& what) const;
 
   // ---- declarations
   /// A statement that uses x without effect.
@@ -198,7 +204,7 @@ struct EmittedCode {
   int shared_functions = 0;
   int lane_blocks = 0;       // blocks of sections computed in vector lanes (Structure::Lanes)
   long lane_operations = 0;  // scalar operations done in them, every lane counted
-  std::vector<bool> angles;  // by q index: whether the body reads sin or cos of that angle
+  std::vector<bool> angles;  // by trig entry: whether the body reads sin or cos of that angle
 };
 
 /// The code of one traced function. C has no kernels (C++ templates): a C program must be traced
@@ -209,8 +215,12 @@ template <class T>
 EmittedCode emit_code(const Program<T>& program, const Model<double>& model, Structure structure,
                       const Dialect& dialect = Dialect());
 
+/// The trig's entries: nq, and one after them for each mimic joint with an angle of its own
+/// (own_angle_mimics).
+int trig_entries(const Model<double>& model);
+
 /// The body of joint_trig(q, trig): dyngen_sincos (dyngen_sincosf in single precision) of every
-/// revolute joint's angle.
+/// revolute joint's angle, and of each mimic joint's own.
 std::string emit_joint_trig(const Model<double>& model, bool single_precision,
                             const Dialect& dialect = Dialect());
 

@@ -577,26 +577,7 @@ std::string typical_overflow(const Robot& robot, const Algorithm& a, bool single
   return single ? in(0.0f) : in(0.0);
 }
 
-/// The generated code takes sin and cos of q's entries only: a revolute mimic joint must follow
-/// its primary as q or -q (a prismatic one by any law).
-void check_mimic_laws(const Robot& robot) {
-  const Model<double>& model = robot.model;
-  for (int i = 0; i < model.nbodies; ++i) {
-    if (!is_mimic(model, i) || !is_revolute(model.joint_type[i]) || model.mimic_mirrors[i] ||
-        (model.mimic_multiplier[i] == 1 && model.mimic_offset[i] == 0))
-      continue;
-    throw InputError(fmt::format(
-        "{}: revolute mimic joint '{}' follows '{}' with multiplier {} and offset {}: dyngen "
-        "generates code for revolute mimic joints with multiplier 1 or -1 and offset 0 (its "
-        "runtime and dyngen eval take any). Treat mimic joints as independent joints "
-        "(--mimic-independent), or lock the joint (--lock {})",
-        robot.path, safe_text(model.joint_name[i]), safe_text(model.joint_name[model.mimic[i]]),
-        model.mimic_multiplier[i], model.mimic_offset[i], safe_text(model.joint_name[i])));
-  }
-}
-
 Generated generate(const Robot& robot, const GenerateOptions& options) {
-  check_mimic_laws(robot);
   for (const Algorithm& a : options.algorithms)
     if (uses_frames(a) && robot.model.frames.empty())
       throw InputError(fmt::format("{}: {} computes frames, and the model has none: name them "

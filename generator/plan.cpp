@@ -16,8 +16,11 @@ std::vector<bool> live_nodes(const Program<T>& program) {
   const Graph<T>& g = program.graph;
   std::vector<bool> live(g.nodes.size(), false);
   for (const int id : program.stored) live[id] = true;
+  // sin and cos read their angle from the trig, which joint_trig fills (a mimic joint's own
+  // angle too): the angle is computed there
   for (int id = static_cast<int>(g.nodes.size()) - 1; id >= 0; --id)
-    if (live[id]) g.for_each_operand(id, [&](int x) { live[x] = true; });
+    if (live[id] && g.nodes[id].op != Op::Sin && g.nodes[id].op != Op::Cos)
+      g.for_each_operand(id, [&](int x) { live[x] = true; });
   return live;
 }
 
@@ -274,7 +277,8 @@ long lane_fills(const Program<T>& program, const std::vector<Section>& sections,
 }
 
 /// sin and cos of joint angles come precomputed in trig (joint_trig), so that one call of
-/// dyngen_sincos serves every function that takes the same q.
+/// dyngen_sincos serves every function that takes the same q: those of q's entries, and of the
+/// mimic joints' own angles (Program::mimic_angles).
 template <class T>
 std::vector<bool> trig_nodes(const Program<T>& program, const std::vector<bool>& live) {
   const auto& nodes = program.graph.nodes;
@@ -283,7 +287,9 @@ std::vector<bool> trig_nodes(const Program<T>& program, const std::vector<bool>&
     const Node<T>& n = nodes[id];
     if (!live[id] || (n.op != Op::Sin && n.op != Op::Cos)) continue;
     const Node<T>& x = nodes[n.a];
-    if (x.op != Op::Input || program.graph.inputs[x.input].array != "q")
+    const bool angle = x.op == Op::Input ? program.graph.inputs[x.input].array == "q"
+                                         : std::ranges::count(program.mimic_angles, n.a) > 0;
+    if (!angle)
       throw std::logic_error("internal error: sin or cos of something other than a joint angle");
     trig[id] = true;
   }

@@ -72,7 +72,19 @@ Program<T> trace(const Algorithm& algorithm, const Model<double>& model, bool si
   spec->call(m, ws, in_spans, out_spans);
   for (const std::vector<Sym<T>>& y : out)
     for (const Sym<T>& s : y) program.stored.push_back(s.id);
+  // the mimic joints' own angles, by the runtime's operations: the same nodes as the trace's
+  for (std::size_t k = 0; k < in.size(); ++k)
+    if (spec->inputs[k].name == std::string_view("q"))
+      for (const int i : own_angle_mimics(model))
+        program.mimic_angles.push_back(joint_position(m, i, in[k][m.q_index[i]]).id);
   return program;
+}
+
+std::vector<int> own_angle_mimics(const Model<double>& model) {
+  std::vector<int> bodies;
+  for (int i = 0; i < model.nbodies; ++i)
+    if (has_own_angle(model, i)) bodies.push_back(i);
+  return bodies;
 }
 
 template <class T>

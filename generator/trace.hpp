@@ -43,7 +43,14 @@ struct Program {
   std::vector<ProgramArray> inputs;   // in signature order
   std::vector<ProgramArray> outputs;  // in signature order, after the inputs
   std::vector<int> stored;            // node stored in each output entry, output by output
+  /// The node of each own_angle_mimics body's angle, for a function of q: the plan reads their
+  /// sines and cosines from the trig after q's.
+  std::vector<int> mimic_angles;
 };
+
+/// The mimic joints that turn by an angle of their own (has_own_angle), in body order: the
+/// trig holds the sine and cosine of the j-th one's at entry nq + j.
+std::vector<int> own_angle_mimics(const Model<double>& model);
 
 /// The first constant that an output depends on and that is not finite, or -1. The trace computes
 /// with constants what it can (constant folding, the same operations as the runtime's), so such

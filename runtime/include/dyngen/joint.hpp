@@ -45,9 +45,7 @@ Xform<S> joint_transform(const Model<S>& model, int i, const S* qi) {
   const Xform<S>& Xt = model.X_tree[i];
   const Mat3<S>& T = Xt.E;
   const Vec3<S>& k = model.joint_axis[i];
-  // a mimic joint's position from its primary's
-  const S q =
-      is_mimic(model, i) ? model.mimic_multiplier[i] * qi[0] + model.mimic_offset[i] : qi[0];
+  const S q = joint_position(model, i, qi[0]);  // a mimic joint's from its primary's
   switch (model.joint_type[i]) {
     case JointType::RevoluteX: {
       // rot_x(q) E_tree; k.x = +-1 turns the rotation's sense

@@ -147,6 +147,21 @@ bool is_mimic(const Model<S>& model, int i) {
   return !model.mimic.empty() && model.mimic[i] >= 0;
 }
 
+/// Body i's joint position from its entry x of q: a mimic joint's mimic_multiplier x +
+/// mimic_offset (x its primary's entry), x itself otherwise.
+template <class S>
+S joint_position(const Model<S>& model, int i, const S& x) {
+  return is_mimic(model, i) ? model.mimic_multiplier[i] * x + model.mimic_offset[i] : x;
+}
+
+/// Whether body i is a mimic joint that turns by its own angle, mimic_multiplier q_p +
+/// mimic_offset, whose sine and cosine those of q_p do not give (a law other than q_p and -q_p).
+template <class S>
+bool has_own_angle(const Model<S>& model, int i) {
+  return is_mimic(model, i) && is_revolute(model.joint_type[i]) && !model.mimic_mirrors[i] &&
+         !(model.mimic_multiplier[i] == S(1) && model.mimic_offset[i] == S(0));
+}
+
 /// The name of each entry of v (and of a, tau and the rows of M): the joint's name, or for a
 /// free joint its name followed by :vx, :vy, :vz, :wx, :wy, :wz (a ball joint: :wx, :wy, :wz).
 template <class S>

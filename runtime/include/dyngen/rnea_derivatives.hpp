@@ -87,8 +87,7 @@ void mimic_rnea_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<c
   TraceHook<S>::enter(-1, Pass::Product);
   const auto law = [&](int i, const S& x, bool position) {
     if (!is_mimic(model, i) || model.mimic_mirrors[i]) return x;
-    const S y = model.mimic_multiplier[i] * x;
-    return position ? y + model.mimic_offset[i] : y;
+    return position ? joint_position(model, i, x) : model.mimic_multiplier[i] * x;
   };
   for (int i = 0; i < model.nbodies; ++i) {
     for (int e = 0; e < joint_nq(model.joint_type[i]); ++e)
