@@ -293,10 +293,11 @@ std::string armature_words(const Model<double>& model) {
 std::map<std::string, std::string> trig_values(const Model<double>& model, const std::string& nq) {
   const std::vector<int> mimics = own_angle_mimics(model);
   if (mimics.empty()) return {{"trig_entries", nq}, {"mimic_trig", ""}};
-  std::string text = "The entries after q's hold the sine and cosine of the mimic joints' own angles:";
+  std::string text =
+      "The entries after q's hold the sine and cosine of the mimic joints' own angles:";
   for (std::size_t j = 0; j < mimics.size(); ++j)
-    text += fmt::format("{} [{} + {}] {}", j ? "," : "", nq, j,
-                        safe_text(model.joint_name[mimics[j]]));
+    text +=
+        fmt::format("{} [{} + {}] {}", j ? "," : "", nq, j, safe_text(model.joint_name[mimics[j]]));
   return {{"trig_entries", fmt::format("{} + {}", nq, mimics.size())},
           {"mimic_trig", comment_lines(text + ".")}};
 }
@@ -307,19 +308,20 @@ std::map<std::string, std::string> header_values(const PackageContext& p, const 
                                                  const std::string& declarations) {
   const Vec3<double>& g = p.model.gravity;
   std::map<std::string, std::string> values = trig_values(p.model, dialect.size("nq"));
-  values.insert({{"banner", summary.code_banner},
-          {"robot", safe_text(p.robot.name)},
-          {"scalar", p.scalar},
-          {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
-          {"structure", structure_words(p.options.structure, summary.counts)},
-          {"gravity", fmt::format("({}, {}, {}) m/s^2", g.x, g.y, g.z)},
-          {"armature", armature_words(p.model)},
-          {"nq", std::to_string(p.model.nq)},
-          {"nv", std::to_string(p.model.nv)},
-          {"arrays", array_docs(p.options.algorithms, free_joint_lines(p.model), dialect)},
-          {"frames", frames},
-          {"declarations", declarations.empty() ? declarations
-                                                : declarations.substr(0, declarations.size() - 1)}});
+  values.insert(
+      {{"banner", summary.code_banner},
+       {"robot", safe_text(p.robot.name)},
+       {"scalar", p.scalar},
+       {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
+       {"structure", structure_words(p.options.structure, summary.counts)},
+       {"gravity", fmt::format("({}, {}, {}) m/s^2", g.x, g.y, g.z)},
+       {"armature", armature_words(p.model)},
+       {"nq", std::to_string(p.model.nq)},
+       {"nv", std::to_string(p.model.nv)},
+       {"arrays", array_docs(p.options.algorithms, free_joint_lines(p.model), dialect)},
+       {"frames", frames},
+       {"declarations",
+        declarations.empty() ? declarations : declarations.substr(0, declarations.size() - 1)}});
   return values;
 }
 

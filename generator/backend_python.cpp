@@ -103,8 +103,8 @@ std::string python_attributes(const Model<double>& model) {
       "    m.attr(\"armature\") = py::make_tuple({});\n"
       "    // q[k:k + 4] is a free or ball joint's unit quaternion (w, x, y, z) for each k\n"
       "    m.attr(\"quaternion_indices\") = py::make_tuple({});\n",
-      python_names(velocity_names(model)), literal(g.x), literal(g.y), literal(g.z),
-      literal(mass), armature, quaternions);
+      python_names(velocity_names(model)), literal(g.x), literal(g.y), literal(g.z), literal(mass),
+      armature, quaternions);
   std::vector<std::string> frames;
   for (const Frame<double>& f : model.frames) frames.push_back(f.name);
   if (!frames.empty())

@@ -439,9 +439,10 @@ std::string CodePrinter<T>::prologue() const {
       const InputRef& in = program_.graph.inputs[n.input];
       read.push_back({operand(id), in.array, in.index});
     } else {
-      read.push_back({operand(id),
-                      fmt::format("{}{}_q", dialect_.trig_member(), n.op == Op::Sin ? "sin" : "cos"),
-                      trig_index(id)});
+      read.push_back(
+          {operand(id),
+           fmt::format("{}{}_q", dialect_.trig_member(), n.op == Op::Sin ? "sin" : "cos"),
+           trig_index(id)});
     }
   }
   out += dialect_.load(read);
@@ -620,7 +621,8 @@ template <class T>
 EmittedCode CodePrinter<T>::print() {
   code_.angles.assign(static_cast<std::size_t>(trig_entries(model_)), false);
   for (std::size_t id = 0; id < nodes_.size(); ++id)
-    if (plan_.trig[id]) code_.angles[static_cast<std::size_t>(trig_index(static_cast<int>(id)))] = true;
+    if (plan_.trig[id])
+      code_.angles[static_cast<std::size_t>(trig_index(static_cast<int>(id)))] = true;
   code_.sections = static_cast<int>(plan_.sections.size());
   code_.shared_functions = static_cast<int>(plan_.groups.size());
   for (const Section& s : plan_.sections) {
@@ -680,13 +682,14 @@ std::string mimic_angle_text(const Model<double>& model, int i,
       case Op::Neg: return "-" + print(n.a);
       case Op::Add: return "(" + print(n.a) + " + " + print(n.b) + ")";
       case Op::Sub: return "(" + print(n.a) + " - " + print(n.b) + ")";
-      case Op::Mul: return print(n.a) + " * " + print(n.b);
+      case Op::Mul: return "(" + print(n.a) + " * " + print(n.b) + ")";
       default: throw std::logic_error("internal error: a mimic angle of other operations");
     }
   };
   const std::string text = print(angle);
   const Op top = g.nodes[angle].op;
-  return top == Op::Add || top == Op::Sub ? text.substr(1, text.size() - 2) : text;  // no (...)
+  return top == Op::Add || top == Op::Sub || top == Op::Mul ? text.substr(1, text.size() - 2)
+                                                            : text;  // without the outer (...)
 }
 
 /// dyngen_sincos calls for the marked trig entries into `trig` (the trig's name and member
@@ -754,8 +757,8 @@ const std::vector<std::string>& Dialect::compiler(const Toolchain& toolchain) co
 
 std::string emit_joint_trig(const Model<double>& model, bool single_precision,
                             const Dialect& dialect) {
-  const std::string out = sincos_calls(model, revolute_angles(model), single_precision,
-                                       dialect.trig_member(), dialect);
+  const std::string out =
+      sincos_calls(model, revolute_angles(model), single_precision, dialect.trig_member(), dialect);
   if (out.empty())
     return fmt::format("    {};  // no revolute joint\n    {};\n", dialect.discard("q"),
                        dialect.discard("trig"));

@@ -7,12 +7,11 @@
 // two of MuJoCo Menagerie's models are read as published (MuJoCo gets stand-ins for their meshes).
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
-
 #include <unistd.h>
 
 #include <array>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,8 +45,9 @@ TEST_P(MjcfPeer, DynamicsAndSitesMatchMujocosOwnCompilation) {
   options.all_frames = true;
   const gen::Robot robot = gen::load_robot(path, options);
   const Model<double>& model = robot.model;
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("dyngen-mjcf-" + std::to_string(getpid()) + "-" + file_name(GetParam()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("dyngen-mjcf-" + std::to_string(getpid()) + "-" + file_name(GetParam()));
   std::filesystem::remove_all(dir);
   const std::string copy = mujoco_peer::mujoco_mjcf(path, dir.string());
   std::array<char, 1000> error{};

@@ -215,7 +215,8 @@ void write_tetrahedron(const std::filesystem::path& file) {
   std::ofstream out(file, std::ios::binary);
   if (file.extension() == ".obj" || file.extension() == ".OBJ") {
     for (const auto& p : v) out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
-    for (const auto& f : faces) out << "f " << f[0] + 1 << ' ' << f[1] + 1 << ' ' << f[2] + 1 << '\n';
+    for (const auto& f : faces)
+      out << "f " << f[0] + 1 << ' ' << f[1] + 1 << ' ' << f[2] + 1 << '\n';
   } else {  // STL: 80-byte header, count, then per face a normal, 3 vertices and 2 bytes
     const std::string header(80, ' ');
     const std::uint32_t count = 4;
