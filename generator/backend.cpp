@@ -68,7 +68,8 @@ std::string upper(std::string s) {
 }
 
 std::string extent_in(const Extent& e, const Dialect& dialect) {
-  return extent_text(e, dialect.size("nq"), dialect.size("nv"), dialect.size("nframes"));
+  return extent_text(e, dialect.size("nq"), dialect.size("nv"), dialect.size("nframes"),
+                     dialect.size("nbodies"));
 }
 
 std::string declaration(const std::string& name, const std::vector<std::string>& parameters,
@@ -171,6 +172,13 @@ std::string joint_name_lines(const Model<double>& model) {
     joint_names +=
         fmt::format("    {},{}", string_literal(names[k]), k + 1 < names.size() ? "\n" : "");
   return joint_names;
+}
+
+std::string body_name_lines(const Model<double>& model) {
+  std::string names;
+  for (const std::string& name : model.body_name)
+    names += fmt::format("    {},\n", string_literal(name));
+  return names;
 }
 
 std::string frame_name_lines(const Model<double>& model) {

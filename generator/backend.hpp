@@ -148,6 +148,14 @@ inline constexpr const char* frames_comment =
     "\n/// The frames whose placements, Jacobians or accelerations the functions compute, in "
     "order\n/// (--frames).\n";
 
+/// The header's comment before the bodies' count and names.
+inline constexpr const char* bodies_comment =
+    "\n/// The bodies, in order: the links, each with those on fixed joints below it merged in.\n"
+    "/// The regressor's columns hold 10 standard parameters per body.\n";
+
+/// The bodies' names as initialiser lines, "    \"forearm_link\",\n" each.
+std::string body_name_lines(const Model<double>& model);
+
 /// "    \"shoulder_pan_joint\",\n..." : the velocity names as initialiser lines.
 std::string joint_name_lines(const Model<double>& model);
 

@@ -49,7 +49,8 @@ class CBackend final : public LanguageBackend {
   void add_files(std::vector<GeneratedFile>& files, const PackageContext& p,
                  const PackageSummary& summary) const override {
     std::map<std::string, std::string> h =
-        header_values(p, *this, summary, frame_declarations(p.model), declarations_);
+        header_values(p, *this, summary,
+                      frame_declarations(p.model) + body_declarations(p), declarations_);
     h.insert({{"name", p.ns}, {"NAME", upper(p.ns)}});
     files.push_back({header(), fill("dynamics.h.in", h)});
     files.push_back({source(), fill("dynamics.c.in",
@@ -58,7 +59,8 @@ class CBackend final : public LanguageBackend {
                                      {"NAME", upper(p.ns)},
                                      {"scalar", p.scalar},
                                      {"joint_names", joint_name_lines(p.model)},
-                                     {"frame_names", frame_names_definition(p.model)},
+                                     {"frame_names", frame_names_definition(p.model) +
+                                                         body_names_definition(p)},
                                      {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
                                      {"definitions", definitions_}})});
   }
@@ -83,6 +85,20 @@ class CBackend final : public LanguageBackend {
     return fmt::format("{}#define {} {}\nextern const char* const {}[{}];\n", frames_comment,
                        size("nframes"), model.frames.size(), external("frame_names"),
                        size("nframes"));
+  }
+
+  /// The header's body count and names, or "" when no function has entries per body.
+  std::string body_declarations(const PackageContext& p) const {
+    if (!uses_bodies(p.options.algorithms)) return "";
+    return fmt::format("{}#define {} {}\nextern const char* const {}[{}];\n", bodies_comment,
+                       size("nbodies"), p.model.nbodies, external("body_names"), size("nbodies"));
+  }
+
+  /// The source's definition of the body names, or "".
+  std::string body_names_definition(const PackageContext& p) const {
+    if (!uses_bodies(p.options.algorithms)) return "";
+    return fmt::format("\nconst char* const {}[{}] = {{\n{}}};\n", external("body_names"),
+                       size("nbodies"), body_name_lines(p.model));
   }
 
   /// The source's definition of the frame names, or "".

@@ -16,7 +16,8 @@ class CppBackend final : public LanguageBackend {
   void add_files(std::vector<GeneratedFile>& files, const PackageContext& p,
                  const PackageSummary& summary) const override {
     std::map<std::string, std::string> header =
-        header_values(p, *this, summary, frame_declarations(p.model), declarations_);
+        header_values(p, *this, summary,
+                      frame_declarations(p.model) + body_declarations(p), declarations_);
     header.insert({{"namespace", p.ns}, {"joint_names", joint_name_lines(p.model)}});
     files.push_back({this->header(), fill("dynamics.hpp.in", header)});
     files.push_back(
@@ -44,6 +45,15 @@ class CppBackend final : public LanguageBackend {
   }
 
  private:
+  /// The header's body count and names, or "" when no function has entries per body.
+  static std::string body_declarations(const PackageContext& p) {
+    if (!uses_bodies(p.options.algorithms)) return "";
+    return fmt::format(
+        "{}inline constexpr int nbodies = {};\ninline constexpr const char* body_names[nbodies] = "
+        "{{\n{}}};\n",
+        bodies_comment, p.model.nbodies, body_name_lines(p.model));
+  }
+
   /// The header's frame count and names, or "" without frames.
   static std::string frame_declarations(const Model<double>& model) {
     if (model.frames.empty()) return "";

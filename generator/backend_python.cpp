@@ -15,6 +15,8 @@ namespace {
 std::string python_shape(const Extent& e, const std::string& ns) {
   const std::string scope = "::" + ns + "::";
   std::vector<std::string> dims;
+  if (e.per_body)  // nv rows of count entries per body: the regressor's Y
+    return fmt::format("{{{0}nv, {0}nbodies * {1}}}", scope, e.count);
   if (e.per_frame) dims.push_back(scope + "nframes");
   if (e.count == 9)  // a rotation, row-major
     dims.insert(dims.end(), {"3", "3"});
@@ -109,6 +111,21 @@ std::string python_attributes(const Model<double>& model) {
   for (const Frame<double>& f : model.frames) frames.push_back(f.name);
   if (!frames.empty())
     text += fmt::format("    m.attr(\"frame_names\") = {};\n", python_names(frames));
+  // the bodies' standard parameters (dyngen/regressor.hpp), (nbodies, 10): tau = Y pi + ...
+  std::string pi;
+  for (int i = 0; i < model.nbodies; ++i) {
+    double p[parameters_per_body];
+    inertial_parameters(model.I[i], p);
+    pi += "\n        ";
+    for (const double x : p) pi += literal(x) + ", ";
+  }
+  text += fmt::format(
+      "    m.attr(\"body_names\") = {};\n"
+      "    // each body's standard parameters: m, m c, Ixx, Ixy, Iyy, Ixz, Iyz, Izz about its origin\n"
+      "    static const Scalar parameters[] = {{{}}};\n"
+      "    m.attr(\"inertial_parameters\") = py::array_t<Scalar>(\n"
+      "        std::vector<py::ssize_t>{{{}, {}}}, parameters);\n",
+      python_names(model.body_name), pi, model.nbodies, parameters_per_body);
   return text;
 }
 

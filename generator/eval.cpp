@@ -23,6 +23,7 @@
 #include "dyngen/frames.hpp"
 #include "dyngen/minv.hpp"
 #include "dyngen/rnea.hpp"
+#include "dyngen/regressor.hpp"
 #include "dyngen/rnea_derivatives.hpp"
 #include "names.hpp"
 #include "robot.hpp"
@@ -265,7 +266,8 @@ class ResultWriter {
   EvalOptions options_;
   std::size_t n_;
   Workspace<double> ws_;
-  std::vector<double> tau_, qdd_, M_, Minv_, dtau_dq_, dtau_dv_, dqdd_dq_, dqdd_dv_, R_, p_, J_;
+  std::vector<double> tau_, qdd_, M_, Minv_, dtau_dq_, dtau_dv_, dqdd_dq_, dqdd_dv_, Y_, R_, p_,
+      J_;
   std::vector<std::string> frame_keys_;   // python_text of each frame's name, quoted
   std::vector<std::size_t> frame_order_;  // the frames in their keys' order
   json row_ = json::array();  // put_array's, kept for its capacity
@@ -329,6 +331,8 @@ void ResultWriter::compute(const State& state) {
     // differ from it in the last bits
     minv<double>(model_, ws_, state.x[Q], Minv_);
   }
+  Y_.assign(options_.regressor && with_a ? n_ * parameters_per_body * model_.nbodies : 0, 0.0);
+  if (!Y_.empty()) regressor<double>(model_, ws_, state.x[Q], state.x[V], state.x[A], Y_);
   if (options_.frames) {
     frame_placements<double>(model_, ws_, state.x[Q], R_, p_);
     frame_jacobians<double>(model_, ws_, state.x[Q], JacobianAxes::World, J_);
@@ -369,6 +373,9 @@ void ResultWriter::write(const State& state, std::size_t s) {
     matrices.push_back(matrix("\"dtau_dq\"", dtau_dq_));
     matrices.push_back(matrix("\"dtau_dv\"", dtau_dv_));
   }
+  if (!Y_.empty())
+    matrices.push_back({"\"Y\"", Y_.data(), Y_.size(),
+                        static_cast<std::size_t>(parameters_per_body * model_.nbodies)});
   std::vector<Output> vectors;
   if (state.has(Tau)) vectors.push_back({"\"qdd\"", qdd_.data(), n_, 0});
   if (state.has(A)) vectors.push_back({"\"tau\"", tau_.data(), n_, 0});

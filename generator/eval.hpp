@@ -15,6 +15,7 @@ namespace dyngen::gen {
 struct EvalOptions {
   bool derivatives = false;  // "Minv", and the derivatives of ABA and RNEA
   bool frames = false;       // "frames": each of the model's frames' R, p and J
+  bool regressor = false;    // "Y": the inertial-parameter regressor, where a is given
 };
 
 /// Reads a JSON array of states {"q": [nq], "v": [nv], "a": [nv]} and/or "tau": [nv] from `in`
@@ -26,7 +27,8 @@ struct EvalOptions {
 /// tau is given, "dqdd_dq" and "dqdd_dv" (aba_derivatives), when a is given, "dtau_dq" and
 /// "dtau_dv" (rnea_derivatives), each a list of rows. With frames, each result has "frames":
 /// {NAME: {"J": 6 rows of nv (base axes at the frame's origin, linear rows first), "R": 3 rows,
-/// "p": [x, y, z]}} for each of the model's frames.
+/// "p": [x, y, z]}} for each of the model's frames. With regressor, each result with a has
+/// "Y", nv rows of 10 nbodies (dyngen/regressor.hpp).
 ///
 /// Throws InputError, with nothing written for the state at fault, naming `name`, the state
 /// and the field: for a syntax error (with its line and column), a number beyond double's range,

@@ -47,7 +47,9 @@ std::string words(const std::vector<std::string>& list) {
   return text;
 }
 
-std::string extent_expression(const Extent& e) { return extent_text(e, "nq", "nv", "nframes"); }
+std::string extent_expression(const Extent& e) {
+  return extent_text(e, "nq", "nv", "nframes", "nbodies");
+}
 
 /// main's loop body: each function on state s, between the markers, its outputs printed.
 std::string harness_calls(const std::vector<Algorithm>& algorithms, const Dialect& dialect) {
@@ -172,10 +174,14 @@ void write_harness(const FirmwareBuild& b) {
                    {"nq", dialect.size_outside("nq")},
                    {"nv", dialect.size_outside("nv")},
                    {"frames_constant",
-                    b.generated.nframes == 0
-                        ? ""
-                        : fmt::format("constexpr int nframes = {};",
-                                      dialect.size_outside("nframes"))},
+                    (b.generated.nframes == 0
+                         ? ""
+                         : fmt::format("constexpr int nframes = {};",
+                                       dialect.size_outside("nframes"))) +
+                        (uses_bodies(generate_options.algorithms)
+                             ? fmt::format("\nconstexpr int nbodies = {};",
+                                           dialect.size_outside("nbodies"))
+                             : "")},
                    {"quaternions", quaternions},
                    {"functions", std::to_string(generate_options.algorithms.size())},
                    {"calls", harness_calls(generate_options.algorithms, dialect)},

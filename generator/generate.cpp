@@ -215,6 +215,13 @@ bool uses_frames(const Algorithm& a) {
   return false;
 }
 
+bool uses_bodies(const std::vector<Algorithm>& algorithms) {
+  for (const Algorithm& a : algorithms)
+    for (const ArraySpec& array : algorithm_spec(a).outputs)
+      if (array.extent.per_body) return true;
+  return false;
+}
+
 namespace {
 
 /// Where a traced node was recorded: "at link 'forearm' (forward pass)".

@@ -108,6 +108,10 @@ std::string conditioning_text(const numerics::Conditioning& c, bool with_aba,
 /// algorithms that --frames is for.
 bool uses_frames(const Algorithm& a);
 
+/// Whether any of the algorithms has an output with entries per body (the regressor's Y): the
+/// package then names its bodies.
+bool uses_bodies(const std::vector<Algorithm>& algorithms);
+
 /// Traces, simplifies and prints every requested algorithm. Throws InputError when ABA is
 /// requested for a robot with a joint that moves no mass, CRBA for one above
 /// max_crba_column_steps, frame Jacobians above max_frame_columns or max_frame_entries, float

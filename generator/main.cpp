@@ -574,11 +574,15 @@ int eval_main(int argc, char** argv) {
   app.add_flag("--derivatives", derivatives,
                "add Minv, and the derivatives of ABA (dqdd_dq, dqdd_dv) where tau is given and of "
                "RNEA (dtau_dq, dtau_dv) where a is given");
+  bool regressor = false;
+  app.add_flag("--regressor", regressor,
+               "add Y, the inertial-parameter regressor (tau = Y pi + armature a), where a is "
+               "given");
   flags.add_to(app);
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen eval", [&] {
     const Robot robot = read_robot(input, flags, " eval", true);
-    evaluate(robot.model, states, stdout, {derivatives, !flags.frames.empty()});
+    evaluate(robot.model, states, stdout, {derivatives, !flags.frames.empty(), regressor});
   });
 }
 

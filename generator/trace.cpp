@@ -7,9 +7,10 @@
 namespace dyngen::gen {
 
 std::string extent_text(const Extent& e, const std::string& nq, const std::string& nv,
-                        const std::string& nframes) {
+                        const std::string& nframes, const std::string& nbodies) {
   std::vector<std::string> factors;
   if (e.per_frame) factors.push_back(nframes);
+  if (e.per_body) factors.push_back(nbodies);
   if (e.count != 1 || e.size == Extent::One) factors.push_back(std::to_string(e.count));
   if (e.size == Extent::Nq) factors.push_back(nq);
   if (e.size == Extent::Nv) factors.push_back(nv);

@@ -67,6 +67,18 @@ def test_matches_the_runtime():
             close(value[s], result[key], f"{key} of state {s}")
 
 
+@pytest.mark.skipif(not hasattr(d, "regressor"), reason="generated without the regressor")
+def test_regressor_times_the_inertial_parameters_is_rnea():
+    q, v, a, tau = states(5)
+    Y = d.regressor(q, v, a)
+    assert Y.shape == (5, d.nv, 10 * len(d.body_names))
+    assert d.inertial_parameters.shape == (len(d.body_names), 10)
+    tau_Y = Y @ d.inertial_parameters.reshape(-1) + np.asarray(d.armature, dtype=d.dtype) * a
+    reference = d.rnea(q, v, a)
+    bound = (2e-3 if single else 1e-12) * np.max(np.abs(reference))
+    assert np.max(np.abs(tau_Y - reference)) <= bound
+
+
 def robot_name():
     """The robot's name in the robot file (a URDF's <robot name>, a chain spec's plain name:), as
     Python reads bytes that may not be UTF-8 (invalid ones as \\xNN)."""

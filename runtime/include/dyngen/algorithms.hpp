@@ -14,6 +14,7 @@
 #include "dyngen/frames.hpp"
 #include "dyngen/minv.hpp"
 #include "dyngen/rnea.hpp"
+#include "dyngen/regressor.hpp"
 #include "dyngen/rnea_derivatives.hpp"
 
 namespace dyngen {
@@ -25,23 +26,25 @@ struct Extent {
   Size size = One;
   int count = 1;
   bool per_frame = false;
+  bool per_body = false;
 
   friend bool operator==(const Extent&, const Extent&) = default;
 };
 
-inline std::size_t extent_size(const Extent& e, int nq, int nv, int nframes) {
+inline std::size_t extent_size(const Extent& e, int nq, int nv, int nframes, int nbodies) {
   const std::size_t n = static_cast<std::size_t>(nv);
   const std::size_t size = e.size == Extent::One  ? 1
                            : e.size == Extent::Nq ? static_cast<std::size_t>(nq)
                            : e.size == Extent::Nv ? n
                                                   : n * n;
   return size * static_cast<std::size_t>(e.count) *
-         (e.per_frame ? static_cast<std::size_t>(nframes) : 1);
+         (e.per_frame ? static_cast<std::size_t>(nframes) : 1) *
+         (e.per_body ? static_cast<std::size_t>(nbodies) : 1);
 }
 
 template <class S>
 std::size_t extent_size(const Extent& e, const Model<S>& model) {
-  return extent_size(e, model.nq, model.nv, static_cast<int>(model.frames.size()));
+  return extent_size(e, model.nq, model.nv, static_cast<int>(model.frames.size()), model.nbodies);
 }
 
 inline constexpr Extent length_nq{Extent::Nq}, length_nv{Extent::Nv}, length_nv_nv{Extent::NvNv};
@@ -106,6 +109,12 @@ inline constexpr ArraySpec Ag_array{
     "about the centre of mass, base axes"};
 inline constexpr ArraySpec hg_array{"hg", {Extent::One, 6},
                                     "centroidal momentum Ag v (linear, then angular)"};
+
+inline constexpr ArraySpec Y_array{
+    "Y", {Extent::Nv, 10, false, true},
+    "inertial-parameter regressor, nv x 10 nbodies row-major: Y[k * 10 nbodies + 10 i + p], "
+    "with tau = Y pi + armature a for pi the bodies' standard parameters (m, m c, Ixx, Ixy, Iyy, "
+    "Ixz, Iyz, Izz about the body's origin) in body order"};
 
 template <class S>
 using AlgorithmInputs = std::span<const std::span<const S>>;
@@ -241,6 +250,14 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        Growth::Linear, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          centroidal<S>(m, ws, in[0], in[1], out[0], out[1]);
+       }},
+      {"regressor",
+       "Inertial-parameter regressor Y(q, v, a): tau = Y pi + armature a, linear in the bodies' "
+       "standard parameters pi.",
+       {q_array, v_array, a_array}, {Y_array},
+       Growth::ColumnSteps, false,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         regressor<S>(m, ws, in[0], in[1], in[2], out[0]);
        }},
   };
   return table;

@@ -11,6 +11,7 @@
 #include "dyngen/model.hpp"
 #include "dyngen/minv.hpp"
 #include "dyngen/model_builder.hpp"
+#include "dyngen/regressor.hpp"
 #include "dyngen/rnea.hpp"
 #include "dyngen/rnea_derivatives.hpp"
 #include "dyngen/workspace.hpp"

@@ -26,6 +26,44 @@ void add_mimic_forces(const Model<S>& model, const std::vector<Force<S>>& f, std
   }
 }
 
+/// RNEA's forward pass for body i (below): Xup[i], and the angular velocity w_i (ws.v[i].ang),
+/// angular acceleration wd_i (ws.a[i].ang) and classical acceleration ac_i of the body's origin
+/// (ws.a[i].lin), from its parent's.
+template <class S>
+void classical_motion(const Model<S>& model, Workspace<S>& ws, int i, std::span<const S> q,
+                      std::span<const S> qd, std::span<const S> qdd, const Motion<S>& a0) {
+  const int k = model.v_index[i];
+  const int p = model.parent[i];
+  const Xform<S>& X = ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
+  const Motion<S> vJ = joint_motion(model, i, &qd[k]);
+  const Motion<S> aJ = joint_motion(model, i, &qdd[k]);
+  Vec3<S>& w = ws.v[i].ang;
+  Vec3<S>& wd = ws.a[i].ang;
+  Vec3<S>& ac = ws.a[i].lin;
+  if (p < 0) {  // the base does not move
+    w = vJ.ang;
+    wd = aJ.ang;
+    ac = mul(X.E, a0.lin) + aJ.lin + cross(w, vJ.lin);
+  } else {
+    const Vec3<S>& wp = ws.v[p].ang;
+    const Vec3<S>& wdp = ws.a[p].ang;
+    const Vec3<S> u = mul(X.E, wp);
+    w = u + vJ.ang;
+    wd = mul(X.E, wdp) + aJ.ang + cross(w, vJ.ang);
+    const Vec3<S> acp = ws.a[p].lin + cross(wdp, X.r) + cross(wp, cross(wp, X.r));
+    ac = mul(X.E, acp) + aJ.lin + cross(w + u, vJ.lin);
+  }
+}
+
+/// f = [I wd + w x I w + h x ac; m ac + wd x h + w x (w x h)]: the force on a body of inertia I
+/// that moves with w, wd and ac (classical_motion).
+template <class S>
+Force<S> body_force(const RigidInertia<S>& I, const Vec3<S>& w, const Vec3<S>& wd,
+                    const Vec3<S>& ac) {
+  return {mul(I.I, wd) + cross(w, mul(I.I, w)) + cross(I.h, ac),
+          scale(ac, I.m) + cross(wd, I.h) + cross(w, cross(w, I.h))};
+}
+
 }  // namespace detail
 
 /// Inverse dynamics: tau = M(q) qdd + C(q, qd) qd + g(q). q has model.nq entries, the others
@@ -45,30 +83,8 @@ void rnea(const Model<S>& model, Workspace<S>& ws, std::span<const S> q, std::sp
   // RBDA's I_i a_i + v_i x* I_i v_i with the terms in v_i's linear part cancelled.
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Forward);
-    const int k = model.v_index[i];
-    const int p = model.parent[i];
-    const Xform<S>& X = ws.Xup[i] = joint_transform(model, i, &q[model.q_index[i]]);
-    const Motion<S> vJ = joint_motion(model, i, &qd[k]);
-    const Motion<S> aJ = joint_motion(model, i, &qdd[k]);
-    Vec3<S>& w = ws.v[i].ang;
-    Vec3<S>& wd = ws.a[i].ang;
-    Vec3<S>& ac = ws.a[i].lin;
-    if (p < 0) {  // the base does not move
-      w = vJ.ang;
-      wd = aJ.ang;
-      ac = mul(X.E, a0.lin) + aJ.lin + cross(w, vJ.lin);
-    } else {
-      const Vec3<S>& wp = ws.v[p].ang;
-      const Vec3<S>& wdp = ws.a[p].ang;
-      const Vec3<S> u = mul(X.E, wp);
-      w = u + vJ.ang;
-      wd = mul(X.E, wdp) + aJ.ang + cross(w, vJ.ang);
-      const Vec3<S> acp = ws.a[p].lin + cross(wdp, X.r) + cross(wp, cross(wp, X.r));
-      ac = mul(X.E, acp) + aJ.lin + cross(w + u, vJ.lin);
-    }
-    const RigidInertia<S>& I = model.I[i];
-    ws.f[i] = {mul(I.I, wd) + cross(w, mul(I.I, w)) + cross(I.h, ac),
-               scale(ac, I.m) + cross(wd, I.h) + cross(w, cross(w, I.h))};
+    detail::classical_motion(model, ws, i, q, qd, qdd, a0);
+    ws.f[i] = detail::body_force(model.I[i], ws.v[i].ang, ws.a[i].ang, ws.a[i].lin);
   }
 
   // backward pass: tau_i = S^T f_i (+ armature qdd_i), f_p += Xup^T f_i
