@@ -197,10 +197,7 @@ INSTANTIATE_TEST_SUITE_P(Robots, Mimic,
                                            std::pair{"pr2.urdf", false},
                                            std::pair{"baxter.urdf", false}),
                          [](const auto& info) {
-                           const std::string path = info.param.first;
-                           const std::string file = path.substr(path.find('/') + 1);
-                           return file.substr(0, file.find('.')) +
-                                  (info.param.second ? "_floating" : "");
+                           return test::case_name(info.param.first, info.param.second);
                          });
 
 }  // namespace

@@ -92,10 +92,7 @@ INSTANTIATE_TEST_SUITE_P(Robots, Regressor,
                                            std::pair{"coverage/ball_chain.yaml", true},
                                            std::pair{"coverage/mimic_gripper.urdf", true}),
                          [](const auto& info) {
-                           const std::string path = info.param.first;
-                           const std::string file = path.substr(path.find('/') + 1);
-                           return file.substr(0, file.find('.')) +
-                                  (info.param.second ? "_floating" : "");
+                           return test::case_name(info.param.first, info.param.second);
                          });
 
 }  // namespace

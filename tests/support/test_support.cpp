@@ -116,6 +116,11 @@ std::vector<RobotFile> robot_files() {
   return robots;
 }
 
+std::string case_name(const std::string& file, bool floating_base) {
+  const std::string base = file.substr(file.rfind('/') + 1);  // npos + 1 = 0
+  return base.substr(0, base.find('.')) + (floating_base ? "_floating" : "");
+}
+
 Model<double> load_model(const std::string& file, bool floating_base, bool all_frames) {
   gen::LoadOptions options;
   options.floating_base = floating_base;

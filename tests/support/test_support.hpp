@@ -59,6 +59,10 @@ std::vector<RobotFile> robot_files();
 /// Loads a robot file with its ABA options, on a floating base if asked.
 Model<double> load_for_aba(const RobotFile& robot, bool floating_base = false);
 
+/// A test's name for a file of tests/models on a fixed or floating base:
+/// "coverage/ball_chain.yaml", true -> "ball_chain_floating".
+std::string case_name(const std::string& file, bool floating_base);
+
 /// The model of a file in tests/models with the default options, on a floating base and with a
 /// frame on every link if asked.
 Model<double> load_model(const std::string& file, bool floating_base = false,
