@@ -52,6 +52,7 @@ struct PackageSummary {
   const std::vector<FunctionCounts>& counts;
   std::string code_banner;  // the banner as // comments
   bool calls_kernels;       // some function calls dyngen_kernels.hpp
+  std::string hash_banner;  // as # comments (CMake, Python, TOML)
 };
 
 class Backend {

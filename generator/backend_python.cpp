@@ -148,9 +148,12 @@ class PythonBackend final : public Backend {
                                             {"attributes", python_attributes(p.model)},
                                             {"functions", functions_}})});
     // pip install: the module built by the package's CMakeLists.txt
-    files.push_back({"pyproject.toml",
-                     fill("pyproject.toml.in", {{"name", p.ns}, {"version", version}})});
-    files.push_back({"setup.py", fill("setup.py.in", {{"name", p.ns}, {"NAME", upper(p.ns)}})});
+    files.push_back({"pyproject.toml", fill("pyproject.toml.in", {{"banner", summary.hash_banner},
+                                                                  {"name", p.ns},
+                                                                  {"version", version}})});
+    files.push_back({"setup.py", fill("setup.py.in", {{"banner", summary.hash_banner},
+                                                      {"name", p.ns},
+                                                      {"NAME", upper(p.ns)}})});
   }
 
   void add_cmake_values(std::map<std::string, std::string>& values,

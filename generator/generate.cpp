@@ -435,7 +435,8 @@ std::vector<GeneratedFile> package_files(const PackageContext& p, const Package&
                                          const std::vector<FunctionCounts>& counts,
                                          const std::string& banner) {
   std::vector<GeneratedFile> files;
-  const PackageSummary summary{counts, commented(banner, "//"), package.calls_kernels};
+  const PackageSummary summary{counts, commented(banner, "//"), package.calls_kernels,
+                               commented(banner, "#")};
   for (const std::unique_ptr<Backend>& backend : package.backends)
     backend->add_files(files, p, summary);
   // the runtime's own header, verbatim: both sides compute sin and cos with the same code

@@ -1,10 +1,12 @@
 # ctest -P script: `pip install --no-build-isolation` of a --python package (dyngen DYNGEN, robot
 # INPUT) for PYTHON, into SCRATCH/site (--target, and --no-deps: NumPy is the system's, and pip
 # would look for it online), then the installed module imported from there and its rnea checked
-# against its crba and nle (tau = M a + h). SCRATCH is rewritten.
+# against its crba and nle (tau = M a + h). pip's build stays in the package's build-pip/, a
+# CMake build tree, so that dyngen can still replace the package: it is generated again there.
+# SCRATCH is rewritten.
 file(REMOVE_RECURSE ${SCRATCH})
-foreach(step IN ITEMS generate install use)
-  if(step STREQUAL "generate")
+foreach(step IN ITEMS generate install use regenerate)
+  if(step STREQUAL "generate" OR step STREQUAL "regenerate")
     set(cmd ${DYNGEN} ${INPUT} -o ${SCRATCH}/package --name installed --quiet --python
             --algorithms rnea,crba,nle)
   elseif(step STREQUAL "install")
@@ -28,3 +30,9 @@ print("installed at", d.__file__)
   endif()
   message(STATUS "${step}:\n${out}")
 endforeach()
+file(GLOB left RELATIVE ${SCRATCH}/package ${SCRATCH}/package/*)
+list(FILTER left EXCLUDE
+     REGEX "^(installed_.*|dyngen_sincos\\.h|CMakeLists\\.txt|pyproject\\.toml|setup\\.py|build-pip)$")
+if(left OR NOT EXISTS ${SCRATCH}/package/build-pip/CMakeCache.txt)
+  message(FATAL_ERROR "pip left ${left} in the package, or no build tree build-pip/")
+endif()
