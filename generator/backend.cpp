@@ -15,6 +15,7 @@ std::unique_ptr<Backend> make_cpp_backend(const GenerateOptions& options);
 std::unique_ptr<Backend> make_c_backend(const GenerateOptions& options);
 std::unique_ptr<Backend> make_batch_backend(const GenerateOptions& options);
 std::unique_ptr<Backend> make_python_backend(const GenerateOptions& options);
+std::unique_ptr<Backend> make_torch_backend(const GenerateOptions& options);
 
 const std::vector<BackendEntry>& backend_registry() {
   static const std::vector<BackendEntry> registry{
@@ -22,6 +23,7 @@ const std::vector<BackendEntry>& backend_registry() {
       {"c", nullptr, make_c_backend, "c (C99, every name prefixed, a header usable from C and C++)"},
       {"batch", [](const GenerateOptions& o) { return o.batch > 0; }, make_batch_backend, ""},
       {"python", [](const GenerateOptions& o) { return o.python; }, make_python_backend, ""},
+      {"torch", [](const GenerateOptions& o) { return o.torch; }, make_torch_backend, ""},
   };
   return registry;
 }

@@ -101,6 +101,14 @@ std::string language_help();
 /// unknown language or options that a backend does not allow.
 std::vector<std::unique_ptr<Backend>> package_backends(const GenerateOptions& options);
 
+/// The algorithms listed, with those that the PyTorch functions' backward calls (--torch:
+/// backend_torch.cpp), in `known`'s order.
+std::vector<Algorithm> with_torch_backwards(const std::vector<Algorithm>& listed,
+                                            const std::vector<Algorithm>& known);
+
+/// The functions NAME_torch.py wraps: --torch's default --algorithms.
+std::vector<Algorithm> torch_default_algorithms();
+
 /// The dialect of language (a --lang name) for a package named name, or InputError.
 std::unique_ptr<Backend> language_backend(const std::string& language, const std::string& name);
 

@@ -39,6 +39,7 @@ struct GenerateOptions {
   bool measure = false;                 // compile for the target and record code and stack
   int batch = 0;                        // lanes of the _batch and _many functions (C++); 0: none
   bool python = false;                  // a Python module over the batch functions (needs batch)
+  bool torch = false;                   // and PyTorch functions over it (needs python)
   std::string options_text;             // the options as given, for the banner
   int conditioning_samples = 16;        // sampled states of the conditioning estimate
   std::function<void(const std::string&)> progress;  // told of each step as it starts, if set

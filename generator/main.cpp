@@ -391,10 +391,11 @@ struct CodeFlags {
   std::string algorithms = comma_list(default_algorithm_names()), scalar = "double", name,
               structure = "auto", target = "host", lang = "c++", jacobian_frame = "world";
   int batch = 0;
-  bool python = false;
+  bool python = false, torch = false;
+  CLI::Option* algorithms_given = nullptr;
 
   void add_to(CLI::App& app, bool firmware) {
-    app.add_option("--algorithms", algorithms,
+    algorithms_given = app.add_option("--algorithms", algorithms,
                    "comma-separated subset of " + comma_list(algorithm_names()) +
                        ", or all (all but the _local variants, which --jacobian-frame chooses)")
         ->capture_default_str();
@@ -449,6 +450,11 @@ struct CodeFlags {
                    "also write a Python module (pybind11, NumPy arrays of one or N states) over "
                    "the batch functions, which the package's CMake builds; --batch defaults to "
                    "4 for double and 8 for float");
+      app.add_flag("--torch", torch,
+                   "also write NAME_torch.py, PyTorch autograd functions over the Python module "
+                   "(implies --python) whose backward calls the generated derivatives, which "
+                   "the package gets; --algorithms defaults to " +
+                       comma_list(torch_default_algorithms()));
       app.add_option("--target", target,
                      "the processor the code is for: dyngen warns where the scalar has no "
                      "hardware there (double on a Cortex-M4F or M33, whose FPU is "
@@ -464,7 +470,8 @@ struct CodeFlags {
     GenerateOptions backends;
     backends.language = lang;
     backends.batch = batch;
-    backends.python = python;
+    backends.python = python || torch;
+    backends.torch = torch;
     const std::vector<std::unique_ptr<Backend>> package = package_backends(backends);
     if (structure == "lanes" && !package.front()->dialect()->lane_blocks())
       throw InputError(fmt::format("--structure lanes: vector lanes are C++ (GCC's and clang's "
@@ -483,8 +490,11 @@ struct CodeFlags {
   GenerateOptions options(const Robot& robot, const ModelFlags& model,
                           const char* command) const {
     GenerateOptions options;
-    options.algorithms = with_jacobian_frame(parse_algorithms(algorithms, algorithm_names()),
+    const std::string listed =
+        torch && algorithms_given->count() == 0 ? comma_list(torch_default_algorithms()) : algorithms;
+    options.algorithms = with_jacobian_frame(parse_algorithms(listed, algorithm_names()),
                                              jacobian_frame, algorithm_names());
+    if (torch) options.algorithms = with_torch_backwards(options.algorithms, algorithm_names());
     options.single_precision = scalar == "float";
     options.language = lang;
     options.target = static_cast<Target>(
@@ -496,8 +506,9 @@ struct CodeFlags {
                         : options.target == Target::Host ? Structure::Auto
                                                          : Structure::Shared;
     options.measure = options.target != Target::Host;
-    options.python = python;
-    options.batch = batch > 0 || !python ? batch : options.single_precision ? 8 : 4;
+    options.python = python || torch;
+    options.torch = torch;
+    options.batch = batch > 0 || !options.python ? batch : options.single_precision ? 8 : 4;
     options.name = identifier(name.empty() ? robot.name : name);
     const Vec3<double>& g = robot.model.gravity;
     options.options_text =
@@ -506,7 +517,7 @@ struct CodeFlags {
                     comma_list(options.algorithms), scalar, lang, structure, target, g.x, g.y,
                     g.z, options.name) +
         (options.batch > 0 ? fmt::format(" --batch {}", options.batch) : "") +
-        (python ? " --python" : "") + model.text() +
+        (torch ? " --torch" : python ? " --python" : "") + model.text() +
         frames_text(robot, model, options.algorithms, command);
     return options;
   }

@@ -309,7 +309,8 @@ Robot load_robot(const std::string& path, const LoadOptions& options) {
 }
 
 Robot parse_robot(const std::string& path, const std::string& text, const LoadOptions& options) {
-  RobotDescription description = reader_for(path, text).parse(path, text);
+  const Reader& reader = reader_for(path, text);
+  RobotDescription description = reader.parse(path, text);
 
   const std::size_t joints = description.builder.joints().size();
   const std::size_t links = description.builder.links().size();
@@ -335,6 +336,7 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
 
   Robot robot;
   robot.path = path;
+  robot.format = reader.format;
   robot.name = description.name;
   robot.sha256 = sha256_of(text);
   robot.warnings = description.warnings;

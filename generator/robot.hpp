@@ -61,6 +61,7 @@ struct LoadOptions {
 
 struct Robot {
   std::string path;
+  std::string format;  // its reader's: "URDF", "MJCF", ...
   std::string name;
   std::string sha256;  // of the input file's bytes
   Model<double> model;

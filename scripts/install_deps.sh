@@ -39,6 +39,7 @@ python=(
   pybind11-dev python3-dev python3-numpy  # the generated Python module (--python)
   python3-pip python3-setuptools          # pip install of a package with --python
   python3-pytest python3-matplotlib       # its tests, and examples/python's plot
+  python3-torch                           # the PyTorch functions (--torch)
 )
 peers=(
   liborocos-kdl-dev libkdl-parser-dev  # tests/peers/kdl

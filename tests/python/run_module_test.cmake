@@ -1,7 +1,8 @@
 # ctest -P script: generates NAME's package with --python (dyngen DYNGEN, robot INPUT, OPTIONS),
 # builds it with its own CMakeLists.txt for PYTHON, runs test_module.py (in TESTS) with pytest on
-# its module, and, given EXAMPLE, that script on the module. SCRATCH is rewritten; OPTIMIZE, if
+# its module and, if OPTIONS has --torch, test_torch.py on NAME_torch.py, and, given EXAMPLE, that script on the module. SCRATCH is rewritten; OPTIMIZE, if
 # set, replaces the package's Release flags' -O3.
+cmake_policy(SET CMP0057 NEW)
 file(REMOVE_RECURSE ${SCRATCH})
 string(TOUPPER ${NAME} upper)
 set(source ${SCRATCH}/package)
@@ -19,9 +20,13 @@ foreach(step IN ITEMS generate configure build pytest example)
     set(cmd ${CMAKE_COMMAND} --build ${binary} --parallel 2)
   elseif(step STREQUAL "pytest")
     string(REPLACE ";" " " model_options "${MODEL_OPTIONS}")
+    set(tests ${TESTS}/test_module.py)
+    if("--torch" IN_LIST OPTIONS)
+      list(APPEND tests ${TESTS}/test_torch.py)
+    endif()
     set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} DYNGEN_MODULE=${NAME}_dynamics
             DYNGEN=${DYNGEN} DYNGEN_ROBOT=${INPUT} "DYNGEN_ROBOT_OPTIONS=${model_options}"
-            MPLBACKEND=Agg ${PYTHON} -m pytest -q -p no:cacheprovider ${TESTS}/test_module.py)
+            MPLBACKEND=Agg ${PYTHON} -m pytest -q -p no:cacheprovider ${tests})
   elseif(EXAMPLE)
     set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} ${PYTHON} ${EXAMPLE} ${NAME}_dynamics
             --rollouts 32 --seconds 0.2 --plot ${SCRATCH}/energy.png)

@@ -1,6 +1,6 @@
 # The interpreter for the Python module's tests (tests/python) and its fuzz target (tests/fuzz).
 option(DYNGEN_PYTHON_TESTS "Test the generated Python module (pybind11-dev, python3-numpy, \
-python3-pytest, python3-matplotlib, python3-pip)" ON)
+python3-pytest, python3-matplotlib, python3-pip, python3-torch)" ON)
 
 # dyngen_test_python(VAR IMPORTS): VAR is the first python3 that can `import IMPORTS` ("numpy,
 # pytest"), PATH's then the system's (a PATH may lead to an interpreter of its own, such as
