@@ -1,13 +1,15 @@
 # ctest -P script: generates NAME's package with --python (dyngen DYNGEN, robot INPUT, OPTIONS),
 # builds it with its own CMakeLists.txt for PYTHON, runs test_module.py (in TESTS) with pytest on
-# its module and, if OPTIONS has --torch, test_torch.py on NAME_torch.py, and, given EXAMPLE, that script on the module. SCRATCH is rewritten; OPTIMIZE, if
-# set, replaces the package's Release flags' -O3.
+# its module and, if OPTIONS has --torch, test_torch.py on NAME_torch.py; given EXAMPLES (the
+# examples/ directory), runs python/rollouts.py on the module and, with --torch, the two
+# examples of torch/ (ur5's). SCRATCH is rewritten; OPTIMIZE, if set, replaces the package's
+# Release flags' -O3.
 cmake_policy(SET CMP0057 NEW)
 file(REMOVE_RECURSE ${SCRATCH})
 string(TOUPPER ${NAME} upper)
 set(source ${SCRATCH}/package)
 set(binary ${SCRATCH}/build)
-foreach(step IN ITEMS generate configure build pytest example)
+foreach(step IN ITEMS generate configure build pytest example identification optimisation)
   if(step STREQUAL "generate")
     set(cmd ${DYNGEN} ${INPUT} -o ${source} --name ${NAME} --quiet --python ${OPTIONS})
   elseif(step STREQUAL "configure")
@@ -27,9 +29,15 @@ foreach(step IN ITEMS generate configure build pytest example)
     set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} DYNGEN_MODULE=${NAME}_dynamics
             DYNGEN=${DYNGEN} DYNGEN_ROBOT=${INPUT} "DYNGEN_ROBOT_OPTIONS=${model_options}"
             MPLBACKEND=Agg ${PYTHON} -m pytest -q -p no:cacheprovider ${tests})
-  elseif(EXAMPLE)
-    set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} ${PYTHON} ${EXAMPLE} ${NAME}_dynamics
-            --rollouts 32 --seconds 0.2 --plot ${SCRATCH}/energy.png)
+  elseif(step STREQUAL "example" AND EXAMPLES)
+    set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} ${PYTHON} ${EXAMPLES}/python/rollouts.py
+            ${NAME}_dynamics --rollouts 32 --seconds 0.2 --plot ${SCRATCH}/energy.png)
+  elseif(step STREQUAL "identification" AND EXAMPLES AND "--torch" IN_LIST OPTIONS)
+    set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} ${PYTHON}
+            ${EXAMPLES}/torch/system_identification.py ${NAME} --urdf ${INPUT} --dyngen ${DYNGEN})
+  elseif(step STREQUAL "optimisation" AND EXAMPLES AND "--torch" IN_LIST OPTIONS)
+    set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} MPLBACKEND=Agg ${PYTHON}
+            ${EXAMPLES}/torch/trajectory_optimisation.py ${NAME} --plot ${SCRATCH}/reach.png)
   else()
     continue()
   endif()
@@ -39,6 +47,8 @@ foreach(step IN ITEMS generate configure build pytest example)
   endif()
   message(STATUS "${step}:\n${out}")
 endforeach()
-if(EXAMPLE AND NOT EXISTS ${SCRATCH}/energy.png)
-  message(FATAL_ERROR "the example wrote no plot")
-endif()
+foreach(plot IN ITEMS energy reach)
+  if(EXAMPLES AND (plot STREQUAL "energy" OR "--torch" IN_LIST OPTIONS) AND NOT EXISTS ${SCRATCH}/${plot}.png)
+    message(FATAL_ERROR "the example wrote no ${plot}.png")
+  endif()
+endforeach()
