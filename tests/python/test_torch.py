@@ -113,6 +113,9 @@ def test_difference_inverts_integrate():
     v = torch.rand(6, T.nv, dtype=torch.float64) - 0.5  # rotations well under pi
     assert (T.difference(q0, T.integrate(q0, v)) - v).abs().max() <= 1e-12
     assert torch.equal(T.integrate(q0, v, dt=0.5), T.integrate(q0, 0.5 * v))
+    # NumPy arrays in, NumPy arrays out
+    mine = T.difference(q0.numpy(), q1.numpy())
+    assert isinstance(mine, np.ndarray) and np.array_equal(mine, T.difference(q0, q1).numpy())
 
 
 def test_integrate_and_difference_are_differentiable():
