@@ -15,14 +15,8 @@ path=""
 for entry in "ur5|tests/models/ur5.urdf|" "solo12_floating|tests/models/solo12.urdf|--floating-base" \
              "atlas_floating|tests/models/atlas.urdf|--floating-base"; do
   IFS='|' read -r name robot options <<<"$entry"
-  echo "== $name"
   # shellcheck disable=SC2086
-  build/dyngen "$robot" -o "$root/$name" --name "$name" --quiet --python \
-    --algorithms rnea,crba,aba $options 2>/dev/null
-  upper=${name^^}
-  cmake -S "$root/$name" -B "$root/$name/build" -D"${upper}_BUILD_CHECK=OFF" \
-    -D"${upper}_ISA=avx2" -DPython3_EXECUTABLE="$python" >/dev/null
-  cmake --build "$root/$name/build" -j "$(nproc)" >/dev/null
+  scripts/build_module.sh "$root" "$name" "$robot" "$python" --python --algorithms rnea,crba,aba $options
   modules+=("${name}_dynamics")
   path="$path${path:+:}$PWD/$root/$name/build"
 done

@@ -16,14 +16,8 @@ for entry in "ur5|ur5|tests/models/ur5.urdf||double" "ur5|ur5_float|tests/models
              "solo12 floating|solo12_floating|tests/models/solo12.urdf|--floating-base|double" \
              "solo12 floating|solo12_floating_float|tests/models/solo12.urdf|--floating-base|float"; do
   IFS='|' read -r label name robot options scalar <<<"$entry"
-  echo "== $name"
   # shellcheck disable=SC2086
-  build/dyngen "$robot" -o "$root/$name" --name "$name" --quiet --torch --algorithms aba \
-    --scalar "$scalar" $options 2>/dev/null
-  upper=${name^^}
-  cmake -S "$root/$name" -B "$root/$name/build" -D"${upper}_BUILD_CHECK=OFF" \
-    -D"${upper}_ISA=avx2" -DPython3_EXECUTABLE="$python" >/dev/null
-  cmake --build "$root/$name/build" -j "$(nproc)" >/dev/null
+  scripts/build_module.sh "$root" "$name" "$robot" "$python" --torch --algorithms aba --scalar "$scalar" $options
   robots+=("$label=$name=$robot${options:+=floating}")
   path="$path${path:+:}$PWD/$root/$name/build"
 done
