@@ -94,7 +94,8 @@ def overhead(torch_module, numpy_module, dtype, rounds):
     qn, vn, taun = (x.numpy() for x in (q, v, tau))
     empty = (np.zeros((0, numpy_module.nq), qn.dtype), np.zeros((0, numpy_module.nv), qn.dtype))
     calls = {"torch aba, one state": lambda: torch_module.aba(q, v, tau),
-             "torch aba forward+backward, one state": lambda: forward_backward(torch_module.aba, q, v, tau),
+             "torch aba forward+backward, one state":
+                 lambda: forward_backward(torch_module.aba, q, v, tau),
              "NumPy module aba, one state": lambda: numpy_module.aba(qn, vn, taun),
              "NumPy module aba, no state": lambda: numpy_module.aba(empty[0], empty[1], empty[1])}
     times = {name: [] for name in calls}
@@ -132,10 +133,12 @@ def main():
             lines.append(f"| {label} | {str(dtype)[6:]} | {n:,} | " + " | ".join(
                 [milliseconds(r["peer forward"]), milliseconds(r["dyngen forward"]),
                  f"{r['ratio forward']:.1f}", milliseconds(r["peer forward+backward"]),
-                 milliseconds(r["dyngen forward+backward"]), f"{r['ratio forward+backward']:.1f}"]) + " |")
+                 milliseconds(r["dyngen forward+backward"]),
+                 f"{r['ratio forward+backward']:.1f}"]) + " |")
             print(lines[-1], flush=True)
         o = overhead(torch_module, numpy_module, dtype, args.rounds)
-        costs.append(f"| {label} | {str(dtype)[6:]} | " + " | ".join(f"{t * 1e6:.1f}" for t in o.values()) + " |")
+        microseconds = " | ".join(f"{t * 1e6:.1f}" for t in o.values())
+        costs.append(f"| {label} | {str(dtype)[6:]} | {microseconds} |")
         print(costs[-1], flush=True)
     text = ("Milliseconds a call (one thread each):\n\n" + "\n".join(lines) +
             "\n\nMicroseconds of a one-state call:\n\n" + "\n".join(costs) + "\n")

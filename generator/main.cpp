@@ -490,8 +490,9 @@ struct CodeFlags {
   GenerateOptions options(const Robot& robot, const ModelFlags& model,
                           const char* command) const {
     GenerateOptions options;
-    const std::string listed =
-        torch && algorithms_given->count() == 0 ? comma_list(torch_default_algorithms()) : algorithms;
+    const std::string listed = torch && algorithms_given->count() == 0
+                                   ? comma_list(torch_default_algorithms())
+                                   : algorithms;
     options.algorithms = with_jacobian_frame(parse_algorithms(listed, algorithm_names()),
                                              jacobian_frame, algorithm_names());
     if (torch) options.algorithms = with_torch_backwards(options.algorithms, algorithm_names());

@@ -52,7 +52,8 @@ def urdf_with_payload(urdf):
   <link name="payload">
     <inertial>
       <mass value="{MASS!r}"/><origin xyz="{' '.join(map(repr, COM_XYZ))}" rpy="0 0 0"/>
-      <inertia ixx="{I[0, 0]!r}" ixy="{I[0, 1]!r}" ixz="{I[0, 2]!r}" iyy="{I[1, 1]!r}" iyz="{I[1, 2]!r}" izz="{I[2, 2]!r}"/>
+      <inertia ixx="{I[0, 0]!r}" ixy="{I[0, 1]!r}" ixz="{I[0, 2]!r}"
+               iyy="{I[1, 1]!r}" iyz="{I[1, 2]!r}" izz="{I[2, 2]!r}"/>
     </inertial>
   </link>
 </robot>"""
@@ -117,7 +118,8 @@ def gradient_descent(t, d, q, v, a, tau, iterations=60):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("name", help="the package's name: NAME_torch and NAME_dynamics are imported")
-    parser.add_argument("--urdf", required=True, help="ur5.urdf, the robot the package was generated for")
+    parser.add_argument("--urdf", required=True,
+                        help="ur5.urdf, the robot the package was generated for")
     parser.add_argument("--dyngen", default="dyngen", help="the dyngen executable (for dyngen eval)")
     parser.add_argument("--noise", type=float, default=0.01, help="noise on tau, relative to its RMS")
     args = parser.parse_args()

@@ -64,7 +64,8 @@ def main():
     def loss():
         optimiser.zero_grad()
         path, v = rollout(t, start, u)
-        value = ((position(path[-1]) - target) ** 2).sum() + 0.01 * (v ** 2).sum() + 1e-7 * (u ** 2).sum()
+        value = (((position(path[-1]) - target) ** 2).sum() + 0.01 * (v ** 2).sum()
+                 + 1e-7 * (u ** 2).sum())
         value.backward()
         losses.append(value.item())
         return value

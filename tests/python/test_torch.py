@@ -97,7 +97,8 @@ def test_integrate_moves_q_along_the_derivatives_tangent_directions():
     for k in range(T.nv):
         e = torch.zeros(T.nv, dtype=torch.float64)
         e[k] = h
-        up, down = (T.rnea(T.integrate(q, s * e).to(T.dtype), v.to(T.dtype), a.to(T.dtype)) for s in (1, -1))
+        up, down = (T.rnea(T.integrate(q, s * e).to(T.dtype), v.to(T.dtype), a.to(T.dtype))
+                    for s in (1, -1))
         columns.append((up.double() - down.double()) / (2 * h))
     error = (torch.stack(columns, -1) - torch.from_numpy(reference).double()).abs().max()
     assert error <= (1e-2 if single else 1e-6) * np.abs(reference).max()
