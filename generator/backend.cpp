@@ -71,7 +71,7 @@ std::string upper(std::string s) {
 
 std::string extent_in(const Extent& e, const Dialect& dialect) {
   return extent_text(e, dialect.size("nq"), dialect.size("nv"), dialect.size("nframes"),
-                     dialect.size("nbodies"));
+                     dialect.size("nbodies"), dialect.size("nc"));
 }
 
 std::string declaration(const std::string& name, const std::vector<std::string>& parameters,
@@ -187,6 +187,13 @@ std::string frame_name_lines(const Model<double>& model) {
   std::string names;
   for (const Frame<double>& f : model.frames)
     names += fmt::format("    {},\n", string_literal(f.name));
+  return names;
+}
+
+std::string constraint_name_lines(const Model<double>& model) {
+  std::string names;
+  for (const Constraint<double>& c : model.constraints)
+    names += fmt::format("    {},\n", string_literal(c.name));
   return names;
 }
 

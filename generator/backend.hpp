@@ -171,6 +171,14 @@ std::string joint_name_lines(const Model<double>& model);
 /// The frames' names as initialiser lines, "    \"tool0\",\n" each.
 std::string frame_name_lines(const Model<double>& model);
 
+/// The header's comment before the constraints' rows and names.
+inline constexpr const char* constraints_comment =
+    "\n/// The constraints (--contacts, a chain spec's loops), in order: lambda and impulse\n"
+    "/// hold 3 entries for each one named :3d and 6 for each :6d, nc in all.\n";
+
+/// The constraints' names as initialiser lines, "    \"FL_FOOT:3d\",\n" each.
+std::string constraint_name_lines(const Model<double>& model);
+
 /// The trig's values in a header: trig_entries, its arrays' length (nq: the size's name, with
 /// the mimic joints' own angles added), and mimic_trig, the comment lines on those entries.
 std::map<std::string, std::string> trig_values(const Model<double>& model, const std::string& nq);

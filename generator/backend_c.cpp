@@ -48,21 +48,23 @@ class CBackend final : public LanguageBackend {
   // ---- Backend
   void add_files(std::vector<GeneratedFile>& files, const PackageContext& p,
                  const PackageSummary& summary) const override {
-    std::map<std::string, std::string> h =
-        header_values(p, *this, summary,
-                      frame_declarations(p.model) + body_declarations(p), declarations_);
+    std::map<std::string, std::string> h = header_values(
+        p, *this, summary,
+        frame_declarations(p.model) + body_declarations(p) + constraint_declarations(p.model),
+        declarations_);
     h.insert({{"name", p.ns}, {"NAME", upper(p.ns)}});
     files.push_back({header(), fill("dynamics.h.in", h)});
-    files.push_back({source(), fill("dynamics.c.in",
-                                    {{"banner", summary.code_banner},
-                                     {"name", p.ns},
-                                     {"NAME", upper(p.ns)},
-                                     {"scalar", p.scalar},
-                                     {"joint_names", joint_name_lines(p.model)},
-                                     {"frame_names", frame_names_definition(p.model) +
-                                                         body_names_definition(p)},
-                                     {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
-                                     {"definitions", definitions_}})});
+    files.push_back(
+        {source(), fill("dynamics.c.in", {{"banner", summary.code_banner},
+                                          {"name", p.ns},
+                                          {"NAME", upper(p.ns)},
+                                          {"scalar", p.scalar},
+                                          {"joint_names", joint_name_lines(p.model)},
+                                          {"frame_names", frame_names_definition(p.model) +
+                                                              body_names_definition(p) +
+                                                              constraint_names_definition(p.model)},
+                                          {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
+                                          {"definitions", definitions_}})});
   }
 
   void add_cmake_values(std::map<std::string, std::string>& values,
@@ -85,6 +87,22 @@ class CBackend final : public LanguageBackend {
     return fmt::format("{}#define {} {}\nextern const char* const {}[{}];\n", frames_comment,
                        size("nframes"), model.frames.size(), external("frame_names"),
                        size("nframes"));
+  }
+
+  /// The header's constraint rows, count and names, or "" without constraints.
+  std::string constraint_declarations(const Model<double>& model) const {
+    if (model.nc == 0) return "";
+    return fmt::format("{}#define {} {}\n#define {} {}\nextern const char* const {}[{}];\n",
+                       constraints_comment, size("nc"), model.nc, size("nconstraints"),
+                       model.constraints.size(), external("constraint_names"),
+                       size("nconstraints"));
+  }
+
+  /// The source's definition of the constraint names, or "".
+  std::string constraint_names_definition(const Model<double>& model) const {
+    if (model.nc == 0) return "";
+    return fmt::format("\nconst char* const {}[{}] = {{\n{}}};\n", external("constraint_names"),
+                       size("nconstraints"), constraint_name_lines(model));
   }
 
   /// The header's body count and names, or "" when no function has entries per body.

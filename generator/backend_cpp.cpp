@@ -15,9 +15,10 @@ class CppBackend final : public LanguageBackend {
 
   void add_files(std::vector<GeneratedFile>& files, const PackageContext& p,
                  const PackageSummary& summary) const override {
-    std::map<std::string, std::string> header =
-        header_values(p, *this, summary,
-                      frame_declarations(p.model) + body_declarations(p), declarations_);
+    std::map<std::string, std::string> header = header_values(
+        p, *this, summary,
+        frame_declarations(p.model) + body_declarations(p) + constraint_declarations(p.model),
+        declarations_);
     header.insert({{"namespace", p.ns}, {"joint_names", joint_name_lines(p.model)}});
     files.push_back({this->header(), fill("dynamics.hpp.in", header)});
     files.push_back(
@@ -52,6 +53,15 @@ class CppBackend final : public LanguageBackend {
         "{}inline constexpr int nbodies = {};\ninline constexpr const char* body_names[nbodies] = "
         "{{\n{}}};\n",
         bodies_comment, p.model.nbodies, body_name_lines(p.model));
+  }
+
+  /// The header's constraint rows, count and names, or "" without constraints.
+  static std::string constraint_declarations(const Model<double>& model) {
+    if (model.nc == 0) return "";
+    return fmt::format(
+        "{}inline constexpr int nc = {};\ninline constexpr int nconstraints = {};\n"
+        "inline constexpr const char* constraint_names[nconstraints] = {{\n{}}};\n",
+        constraints_comment, model.nc, model.constraints.size(), constraint_name_lines(model));
   }
 
   /// The header's frame count and names, or "" without frames.

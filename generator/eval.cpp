@@ -1,5 +1,7 @@
 #include "eval.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -10,20 +12,19 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <numeric>
 #include <string_view>
 #include <vector>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include "dyngen/aba.hpp"
 #include "dyngen/aba_derivatives.hpp"
+#include "dyngen/constrained.hpp"
 #include "dyngen/crba.hpp"
 #include "dyngen/frames.hpp"
 #include "dyngen/minv.hpp"
-#include "dyngen/rnea.hpp"
 #include "dyngen/regressor.hpp"
+#include "dyngen/rnea.hpp"
 #include "dyngen/rnea_derivatives.hpp"
 #include "names.hpp"
 #include "robot.hpp"
@@ -240,9 +241,9 @@ struct Output {
 };
 
 /// Computes each state's results and writes them as nlohmann::json's dump(2) would print the
-/// whole tree, its keys in dump's order: M, Minv, dqdd_dq, dqdd_dv, dtau_dq, dtau_dv, frames,
-/// qdd, tau. The head is written with the first result, so that a bad first state leaves
-/// nothing written.
+/// whole tree, its keys in dump's order: M, Minv, Y, dqdd_dq, dqdd_dv, dtau_dq, dtau_dv, frames,
+/// impulse, lambda, qdd, tau, v_plus. The head is written with the first result, so that a bad
+/// first state leaves nothing written.
 class ResultWriter {
  public:
   ResultWriter(const Model<double>& model, const std::string& name, std::FILE* out,
@@ -252,7 +253,7 @@ class ResultWriter {
 
  private:
   void compute(const State& state);
-  std::array<Output, 3> frame_outputs(std::size_t f) const;
+  std::vector<Output> frame_outputs(std::size_t f, bool with_v) const;
   void check_finite(const Output& output, std::size_t s, const std::string& frame = "") const;
   void put(std::string_view text);
   void put_key(std::string_view key, int indent, bool first);
@@ -266,8 +267,8 @@ class ResultWriter {
   EvalOptions options_;
   std::size_t n_;
   Workspace<double> ws_;
-  std::vector<double> tau_, qdd_, M_, Minv_, dtau_dq_, dtau_dv_, dqdd_dq_, dqdd_dv_, Y_, R_, p_,
-      J_;
+  std::vector<double> tau_, qdd_, M_, Minv_, dtau_dq_, dtau_dv_, dqdd_dq_, dqdd_dv_, Y_, R_, p_, J_,
+      Jdot_v_, lambda_, v_plus_, impulse_;
   std::vector<std::string> frame_keys_;   // python_text of each frame's name, quoted
   std::vector<std::size_t> frame_order_;  // the frames in their keys' order
   json row_ = json::array();  // put_array's, kept for its capacity
@@ -279,6 +280,10 @@ ResultWriter::ResultWriter(const Model<double>& model, const std::string& name,
                            std::FILE* out, const EvalOptions& options)
     : model_(model), name_(name), out_(out), options_(options),
       n_(static_cast<std::size_t>(model.nv)), ws_(model) {
+  if (options.derivatives && model.nc > 0)
+    throw InputError(
+        "--derivatives with --contacts: the derivatives of contact_dynamics are not "
+        "in dyngen yet; leave out one of them");
   if (options.derivatives) {
     if (model.nv > Workspace<double>::max_matrix_nv)
       throw InputError(fmt::format("--derivatives: the robot has {} degrees of freedom, above the "
@@ -304,6 +309,7 @@ ResultWriter::ResultWriter(const Model<double>& model, const std::string& name,
   R_.resize(9 * frame_keys_.size());
   p_.resize(3 * frame_keys_.size());
   J_.resize(6 * frame_keys_.size() * n_);
+  Jdot_v_.resize(6 * frame_keys_.size());
 }
 
 void ResultWriter::compute(const State& state) {
@@ -313,7 +319,15 @@ void ResultWriter::compute(const State& state) {
   qdd_.assign(with_tau ? n_ : 0, 0.0);
   M_.resize(nn);
   if (with_a) rnea<double>(model_, ws_, state.x[Q], state.x[V], state.x[A], tau_);
-  if (with_tau) aba<double>(model_, ws_, state.x[Q], state.x[V], state.x[Tau], qdd_);
+  lambda_.assign(with_tau ? static_cast<std::size_t>(model_.nc) : 0, 0.0);
+  if (with_tau && model_.nc > 0)
+    contact_dynamics<double>(model_, ws_, state.x[Q], state.x[V], state.x[Tau], qdd_, lambda_);
+  else if (with_tau)
+    aba<double>(model_, ws_, state.x[Q], state.x[V], state.x[Tau], qdd_);
+  const bool impulses = model_.nc > 0 && state.has(V);
+  v_plus_.assign(impulses ? n_ : 0, 0.0);
+  impulse_.assign(impulses ? static_cast<std::size_t>(model_.nc) : 0, 0.0);
+  if (impulses) impulse_dynamics<double>(model_, ws_, state.x[Q], state.x[V], v_plus_, impulse_);
   crba<double>(model_, ws_, state.x[Q], M_);
   if (options_.derivatives) {
     Minv_.resize(nn);
@@ -336,13 +350,19 @@ void ResultWriter::compute(const State& state) {
   if (options_.frames) {
     frame_placements<double>(model_, ws_, state.x[Q], R_, p_);
     frame_jacobians<double>(model_, ws_, state.x[Q], JacobianAxes::World, J_);
+    if (state.has(V))
+      frame_bias_accelerations<double>(model_, ws_, state.x[Q], state.x[V], JacobianAxes::World,
+                                       Jdot_v_);
   }
 }
 
-/// Frame f's J, R and p.
-std::array<Output, 3> ResultWriter::frame_outputs(std::size_t f) const {
-  return {Output{"\"J\"", J_.data() + 6 * f * n_, 6 * n_, n_},
-          Output{"\"R\"", R_.data() + 9 * f, 9, 3}, Output{"\"p\"", p_.data() + 3 * f, 3, 0}};
+/// Frame f's J, Jdot_v (with v), R and p.
+std::vector<Output> ResultWriter::frame_outputs(std::size_t f, bool with_v) const {
+  std::vector<Output> out{Output{"\"J\"", J_.data() + 6 * f * n_, 6 * n_, n_}};
+  if (with_v) out.push_back(Output{"\"Jdot_v\"", Jdot_v_.data() + 6 * f, 6, 0});
+  out.push_back(Output{"\"R\"", R_.data() + 9 * f, 9, 3});
+  out.push_back(Output{"\"p\"", p_.data() + 3 * f, 3, 0});
+  return out;
 }
 
 void ResultWriter::check_finite(const Output& output, std::size_t s,
@@ -377,12 +397,17 @@ void ResultWriter::write(const State& state, std::size_t s) {
     matrices.push_back({"\"Y\"", Y_.data(), Y_.size(),
                         static_cast<std::size_t>(parameters_per_body * model_.nbodies)});
   std::vector<Output> vectors;
+  const std::size_t nc = static_cast<std::size_t>(model_.nc);
+  if (!impulse_.empty()) vectors.push_back({"\"impulse\"", impulse_.data(), nc, 0});
+  if (!lambda_.empty()) vectors.push_back({"\"lambda\"", lambda_.data(), nc, 0});
   if (state.has(Tau)) vectors.push_back({"\"qdd\"", qdd_.data(), n_, 0});
   if (state.has(A)) vectors.push_back({"\"tau\"", tau_.data(), n_, 0});
+  if (!v_plus_.empty()) vectors.push_back({"\"v_plus\"", v_plus_.data(), n_, 0});
   // every output is checked before any of the state's is written
   for (const Output& output : matrices) check_finite(output, s);
   for (const std::size_t f : frame_order_)
-    for (const Output& output : frame_outputs(f)) check_finite(output, s, model_.frames[f].name);
+    for (const Output& output : frame_outputs(f, state.has(V)))
+      check_finite(output, s, model_.frames[f].name);
   for (const Output& output : vectors) check_finite(output, s);
 
   if (!started_) start();
@@ -394,7 +419,7 @@ void ResultWriter::write(const State& state, std::size_t s) {
     for (const std::size_t f : frame_order_) {
       put_key(frame_keys_[f], 8, f == frame_order_.front());
       put("{");
-      const std::array<Output, 3> outputs = frame_outputs(f);
+      const std::vector<Output> outputs = frame_outputs(f, state.has(V));
       for (const Output& output : outputs) put_output(output, 10, &output == &outputs.front());
       put("\n        }");
     }
@@ -408,6 +433,13 @@ void ResultWriter::start() {
   std::vector<std::string> joints;
   for (const std::string& name : velocity_names(model_)) joints.push_back(python_text(name));
   json fields{{"joints", joints}, {"nq", model_.nq}, {"nv", model_.nv}};
+  if (model_.nc > 0) {
+    std::vector<std::string> constraints;
+    for (const Constraint<double>& c : model_.constraints)
+      constraints.push_back(python_text(c.name));
+    fields["constraints"] = constraints;
+    fields["nc"] = model_.nc;
+  }
   if (std::ranges::any_of(model_.armature, [](double a) { return a != 0; }))
     fields["armature"] = model_.armature;
   std::string head = fields.dump(2);

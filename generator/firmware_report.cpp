@@ -48,7 +48,7 @@ std::string words(const std::vector<std::string>& list) {
 }
 
 std::string extent_expression(const Extent& e) {
-  return extent_text(e, "nq", "nv", "nframes", "nbodies");
+  return extent_text(e, "nq", "nv", "nframes", "nbodies", "nc");
 }
 
 /// main's loop body: each function on state s, between the markers, its outputs printed.
@@ -165,27 +165,30 @@ void write_harness(const FirmwareBuild& b) {
   for (std::size_t k = 0; k < generate_options.algorithms.size(); ++k)
     stack_prints += fmt::format("  print_stack(\"{}\", stack_use[{}]);\n",
                                 generate_options.algorithms[k], k);
-  write_file(b.build / "harness.cpp",
-             fill("firmware_harness.cpp.in",
-                  {{"name", ns},
-                   {"header", dialect.header()},
-                   {"scalar", b.single ? "float" : "double"},
-                   {"states", std::to_string(b.options.states)},
-                   {"nq", dialect.size_outside("nq")},
-                   {"nv", dialect.size_outside("nv")},
-                   {"frames_constant",
-                    (b.generated.nframes == 0
-                         ? ""
-                         : fmt::format("constexpr int nframes = {};",
-                                       dialect.size_outside("nframes"))) +
-                        (uses_bodies(generate_options.algorithms)
-                             ? fmt::format("\nconstexpr int nbodies = {};",
-                                           dialect.size_outside("nbodies"))
-                             : "")},
-                   {"quaternions", quaternions},
-                   {"functions", std::to_string(generate_options.algorithms.size())},
-                   {"calls", harness_calls(generate_options.algorithms, dialect)},
-                   {"stack_prints", stack_prints}}));
+  write_file(
+      b.build / "harness.cpp",
+      fill(
+          "firmware_harness.cpp.in",
+          {{"name", ns},
+           {"header", dialect.header()},
+           {"scalar", b.single ? "float" : "double"},
+           {"states", std::to_string(b.options.states)},
+           {"nq", dialect.size_outside("nq")},
+           {"nv", dialect.size_outside("nv")},
+           {"frames_constant",
+            (b.generated.nframes == 0
+                 ? ""
+                 : fmt::format("constexpr int nframes = {};", dialect.size_outside("nframes"))) +
+                (uses_bodies(generate_options.algorithms)
+                     ? fmt::format("\nconstexpr int nbodies = {};", dialect.size_outside("nbodies"))
+                     : "") +
+                (b.robot.model.nc > 0
+                     ? fmt::format("\nconstexpr int nc = {};", dialect.size_outside("nc"))
+                     : "")},
+           {"quaternions", quaternions},
+           {"functions", std::to_string(generate_options.algorithms.size())},
+           {"calls", harness_calls(generate_options.algorithms, dialect)},
+           {"stack_prints", stack_prints}}));
   write_file(b.build / "startup.c", std::string(template_text("startup.c")));
   std::string linker_script(template_text("cortex_m.ld"));
   if (generate_options.target == Target::CortexM33) {

@@ -91,6 +91,17 @@ std::vector<std::string> precision_warnings(const numerics::Conditioning& c, boo
   return warnings;
 }
 
+/// The banner's lines on the constraints: their rows, gains and the solve's damping.
+std::string constraints_text(const Model<double>& model) {
+  std::vector<std::string> names;
+  for (const Constraint<double>& c : model.constraints) names.push_back(safe_text(c.name));
+  const ConstraintSettings<double>& s = model.constraint_settings;
+  return fmt::format(
+      "Constraints: {} ({} rows of lambda); Baumgarte kp {:g}, kd {:g}; restitution {:g};\n"
+      "  lambda from {} proximal iterations on J M^-1 J^T + mu, mu = {:g} of its mean diagonal",
+      fmt::join(names, ", "), model.nc, s.kp, s.kd, s.restitution, proximal_iterations, s.damping);
+}
+
 std::string banner_text(const Robot& robot, const GenerateOptions& options,
                         const std::vector<FunctionCounts>& counts, const std::string& conditioning) {
   std::string text = fmt::format(
@@ -117,6 +128,7 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
                           c.shared_sections, c.sections, c.shared_functions);
   }
   if (robot.snapped) text += fmt::format("\n{}", snap_text(*robot.snapped));
+  if (robot.model.nc > 0) text += "\n" + constraints_text(robot.model);
   return fmt::format("{}\n{}", text, conditioning);
 }
 
@@ -165,7 +177,9 @@ std::string armature_records(const Model<double>& model) {
 std::string record_arguments(const Model<double>& model) {
   std::vector<std::string> arguments{model.frames.empty() ? "{}" : "model_frames",
                                      model.armature.empty() ? "{}" : "model_armature",
-                                     model.mimic.empty() ? "{}" : "model_mimics"};
+                                     model.mimic.empty() ? "{}" : "model_mimics",
+                                     model.nc == 0 ? "{}" : "model_constraints",
+                                     model.nc == 0 ? "{}" : "model_constraint_settings"};
   while (!arguments.empty() && arguments.back() == "{}") arguments.pop_back();
   std::string out;
   for (const std::string& a : arguments) out += ", " + a;
@@ -182,6 +196,35 @@ std::string mimic_records(const Model<double>& model) {
       out += fmt::format("    {{{}, {}, {}, {}}},\n", i, model.mimic[i],
                          literal(model.mimic_multiplier[i]), literal(model.mimic_offset[i]));
   return out + "};\n";
+}
+
+/// The model's constraints as ConstraintRecords and their settings (model.hpp.in), or "".
+std::string constraint_records(const Model<double>& model) {
+  if (model.nc == 0) return "";
+  auto list = [](std::initializer_list<double> xs) {
+    std::string s;
+    for (const double x : xs) s += (s.empty() ? "" : ", ") + literal(x);
+    return "{" + s + "}";
+  };
+  auto placement = [&](const Xform<double>& X) {
+    const Mat3<double>& E = X.E;
+    return fmt::format("{},\n     {}", list({E.xx, E.xy, E.xz, E.yx, E.yy, E.yz, E.zx, E.zy, E.zz}),
+                       list({X.r.x, X.r.y, X.r.z}));
+  };
+  std::string out =
+      "\ninline const ::dyngen::ConstraintRecord model_constraints[] = {\n"
+      "    // name, body A, its placement E (row-major) and r, body B (-1: the world), its\n"
+      "    // placement, rows, whether a loop closure\n";
+  for (const Constraint<double>& c : model.constraints)
+    out += fmt::format("    {{{}, {},\n     {},\n     {},\n     {}, {}, {}}},\n",
+                       string_literal(c.name), c.body_a, placement(c.placement_a), c.body_b,
+                       placement(c.placement_b), constraint_rows(c), c.loop ? 1 : 0);
+  const ConstraintSettings<double>& s = model.constraint_settings;
+  return out + fmt::format(
+                   "}};\n\n// Baumgarte kp, kd, the restitution and the damping\n"
+                   "inline const ::dyngen::ConstraintSettings<double> "
+                   "model_constraint_settings{{{}, {}, {}, {}}};\n",
+                   literal(s.kp), literal(s.kd), literal(s.restitution), literal(s.damping));
 }
 
 /// The model's frames as FrameRecords (model.hpp.in), or "" without frames.
@@ -394,7 +437,8 @@ void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
              {"namespace", p.ns},
              {"records", model_records<T>(p.model)},
              {"frame_records", frame_records(p.model)},
-             {"armature_records", armature_records(p.model) + mimic_records(p.model)},
+             {"armature_records",
+              armature_records(p.model) + mimic_records(p.model) + constraint_records(p.model)},
              {"record_arguments", record_arguments(p.model)},
              {"gravity", fmt::format("{}, {}, {}", literal(g.x), literal(g.y), literal(g.z))}})});
   std::string includes;

@@ -50,6 +50,48 @@ Vec3<double> parse_gravity(const std::string& text) {
   return {g[0], g[1], g[2]};
 }
 
+/// The algorithms fitted to the model's constraints (listed: --algorithms' text, "" when not
+/// given): without constraints, "all" leaves out those that need them and naming one is an
+/// error; with them, the default set gains contact_dynamics and impulse_dynamics.
+std::vector<Algorithm> with_constraints(std::vector<Algorithm> algorithms,
+                                        const Model<double>& model, const std::string& listed) {
+  const auto needs = [](const Algorithm& a) {
+    return algorithm_spec(a).needs == Needs::Constraints;
+  };
+  if (model.nc == 0) {
+    const auto it = std::find_if(algorithms.begin(), algorithms.end(), needs);
+    if (it != algorithms.end() && listed != "all")
+      throw InputError(
+          fmt::format("--algorithms: {} needs constraints: give --contacts LINK[:3d|:6d],... "
+                      "or a chain spec with loops",
+                      *it));
+    std::erase_if(algorithms, needs);
+    return algorithms;
+  }
+  if (!listed.empty()) return algorithms;
+  std::vector<Algorithm> out;
+  for (const Algorithm& a : algorithm_names())
+    if (needs(a) || std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end())
+      out.push_back(a);
+  return out;
+}
+
+/// --baumgarte KP,KD: two finite non-negative gains.
+std::pair<double, double> parse_baumgarte(const std::string& text) {
+  std::vector<double> k;
+  std::stringstream s(text);
+  for (std::string item; std::getline(s, item, ',');) {
+    const std::optional<double> x = finite_number(item);
+    if (!x || *x < 0)
+      throw InputError(fmt::format("--baumgarte {}: '{}' is not a finite number >= 0",
+                                   safe_text(text), safe_text(item)));
+    k.push_back(*x);
+  }
+  if (k.size() != 2)
+    throw InputError(fmt::format("--baumgarte {}: expected KP,KD", safe_text(text)));
+  return {k[0], k[1]};
+}
+
 /// --armature JOINT=VALUE: the joint (up to the last '=', so a name may hold one) and a finite
 /// number.
 std::pair<std::string, double> parse_armature(const std::string& text) {
@@ -291,9 +333,13 @@ CLI::Validator link_list() {
 /// The options that choose the model, shared by generation and eval.
 struct ModelFlags {
   std::string gravity;
-  std::vector<std::string> locks, frames, armature;
+  std::vector<std::string> locks, frames, armature, contacts;
   bool no_gravity = false, lock_massless = false, floating_base = false, mimic_independent = false;
-  std::optional<double> snap;
+  std::optional<double> snap, restitution, damping;
+  std::string baumgarte;
+  /// --constraint-damping's default: float's rounding (1.2e-7 of A) would leave dependent rows'
+  /// pivots near zero under double's 1e-10
+  double default_damping = 1e-10;
 
   void add_to(CLI::App& app) {
     auto* gravity_opt = app.add_option("--gravity", gravity,
@@ -330,6 +376,29 @@ struct ModelFlags {
                    "by at most TOL relative, and says so in the banner")
         ->type_name("TOL")
         ->check(number_in(0.0, 1e-3));
+    app.add_option_function<std::string>(
+           "--contacts", [this](const std::string& text) { contacts = split_names(text); },
+           "comma-separated links held to the world, each LINK or LINK:3d (its origin does not "
+           "accelerate) or LINK:6d (nor does it rotate); adds contact_dynamics and "
+           "impulse_dynamics to the default algorithms")
+        ->check(link_list())
+        ->type_name("LINKS");
+    app.add_option("--baumgarte", baumgarte,
+                   "the constraints' Baumgarte gains KP,KD (1/s^2, 1/s): contact_dynamics holds "
+                   "J qdd + Jdot v = -KD J v - KP e, e the position error of a loop closure "
+                   "(default 0,0)")
+        ->type_name("KP,KD");
+    app.add_option("--restitution", restitution,
+                   "impulse_dynamics' coefficient of restitution: J v_plus = -E J v_minus "
+                   "(default 0, perfectly inelastic)")
+        ->type_name("E")
+        ->check(number_in(0.0, 1.0));
+    app.add_option("--constraint-damping", damping,
+                   "the proximal solve's damping mu, relative to the mean diagonal of J M^-1 J^T "
+                   "(default 1e-10 in double, 1e-5 in float): the step that keeps dependent "
+                   "constraints' lambda finite and minimum-norm")
+        ->type_name("D")
+        ->check(number_in(1e-14, 1e-2));
   }
 
   LoadOptions load_options() const {
@@ -347,6 +416,12 @@ struct ModelFlags {
     }
     load.armature = all;
     load.armature.insert(load.armature.end(), named.begin(), named.end());
+    load.contacts = contacts;
+    if (!baumgarte.empty())
+      std::tie(load.constraint_settings.kp, load.constraint_settings.kd) =
+          parse_baumgarte(baumgarte);
+    if (restitution) load.constraint_settings.restitution = *restitution;
+    load.constraint_settings.damping = damping.value_or(default_damping);
     if (no_gravity) load.gravity = Vec3<double>{0, 0, 0};
     if (!gravity.empty()) load.gravity = parse_gravity(gravity);
     return load;
@@ -361,6 +436,10 @@ struct ModelFlags {
     if (lock_massless) out += " --lock-massless";
     if (mimic_independent) out += " --mimic-independent";
     if (snap) out += fmt::format(" --snap {}", *snap);
+    if (!contacts.empty()) out += " --contacts " + comma_list(contacts);
+    if (!baumgarte.empty()) out += " --baumgarte " + baumgarte;
+    if (restitution) out += fmt::format(" --restitution {}", *restitution);
+    if (damping) out += fmt::format(" --constraint-damping {}", *damping);
     return out;
   }
 };
@@ -496,6 +575,8 @@ struct CodeFlags {
     options.algorithms = with_jacobian_frame(parse_algorithms(listed, algorithm_names()),
                                              jacobian_frame, algorithm_names());
     if (torch) options.algorithms = with_torch_backwards(options.algorithms, algorithm_names());
+    options.algorithms = with_constraints(options.algorithms, robot.model,
+                                          algorithms_given->count() > 0 ? listed : "");
     options.single_precision = scalar == "float";
     options.language = lang;
     options.target = static_cast<Target>(
@@ -638,6 +719,7 @@ int report_main(int argc, char** argv) {
     options.package_dir = package_dir();
     options.command = command_line(argc, argv);
     const Robot robot = read_robot(input, flags, " report", options.quiet);
+    options.algorithms = with_constraints(options.algorithms, robot.model, algorithms);
     options.model_flags =
         flags.text() + frames_text(robot, flags, options.algorithms, "dyngen report");
     make_report(robot, options, output);
@@ -725,6 +807,7 @@ int main(int argc, char** argv) {
   return run_reporting_errors("dyngen", [&] {
     code.check_options();
     check_output_dir(output, force);
+    if (code.scalar == "float") flags.default_damping = 1e-5;
     const Robot robot = read_robot(input, flags, "", quiet);
     GenerateOptions options = code.options(robot, flags, "dyngen");
     if (app.count("--measure") + app.count("--no-measure") > 0) options.measure = measure;

@@ -192,11 +192,12 @@ bool is_identifier(std::string_view name) { return identifier(name) == name; }
 std::vector<std::string> c_names(std::string_view name) {
   const std::string prefix = std::string(name) + "_", macro = upper(name) + "_";
   std::vector<std::string> names;
-  for (const char* local : {"joint_names", "frame_names", "body_names", "JointTrig", "joint_trig"})
+  for (const char* local :
+       {"joint_names", "frame_names", "body_names", "constraint_names", "JointTrig", "joint_trig"})
     names.push_back(prefix + local);
   for (const Algorithm& a : algorithm_names())
     names.insert(names.end(), {prefix + a, prefix + a + "_trig"});
-  for (const char* local : {"NQ", "NV", "NFRAMES", "NBODIES", "DYNAMICS_H"})
+  for (const char* local : {"NQ", "NV", "NFRAMES", "NBODIES", "NC", "NCONSTRAINTS", "DYNAMICS_H"})
     names.push_back(macro + local);
   return names;
 }

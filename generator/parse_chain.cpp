@@ -60,6 +60,32 @@ struct Reader {
 
 namespace {
 
+/// loops: [{a: LINK, b: LINK, a_xyz: [x, y, z], b_xyz: [x, y, z], type: 3d | 6d}, ...]: the
+/// point at a_xyz in link a's frame held to the point at b_xyz in link b's (default: their
+/// origins), and with 6d their orientations too. The links are checked once the model is built.
+void parse_loops(const Reader& r, const YAML::Node& loops, RobotDescription& robot) {
+  if (!loops.IsSequence()) r.fail(loops, "loops", "expected a list of loop closures");
+  for (std::size_t k = 0; k < loops.size(); ++k) {
+    const YAML::Node loop = loops[k];
+    const std::string at = fmt::format("loops[{}]", k);
+    r.only_keys(loop, at, {"a", "b", "a_xyz", "b_xyz", "type"});
+    RobotDescription::Loop l;
+    for (const char* key : {"a", "b"})
+      if (!loop[key]) r.fail(loop, at, fmt::format("missing '{}' (a link)", key));
+    l.link_a = r.text(loop["a"], at + ".a");
+    l.link_b = r.text(loop["b"], at + ".b");
+    if (loop["a_xyz"]) l.xyz_a = r.vec3(loop["a_xyz"], at + ".a_xyz");
+    if (loop["b_xyz"]) l.xyz_b = r.vec3(loop["b_xyz"], at + ".b_xyz");
+    if (loop["type"]) {
+      const std::string type = r.text(loop["type"], at + ".type");
+      if (type != "3d" && type != "6d")
+        r.fail(loop["type"], at + ".type", fmt::format("'{}' is not 3d or 6d", type));
+      l.six_d = type == "6d";
+    }
+    robot.loops.push_back(l);
+  }
+}
+
 RobotDescription parse_document(const std::string& path, const std::string& text) {
   YAML::Node doc;
   try {
@@ -68,7 +94,7 @@ RobotDescription parse_document(const std::string& path, const std::string& text
     throw InputError(fmt::format("{}:{}: malformed YAML: {}", path, e.mark.line + 1, e.msg));
   }
   const Reader r{path};
-  r.only_keys(doc, "chain spec", {"name", "gravity", "base", "links"});
+  r.only_keys(doc, "chain spec", {"name", "gravity", "base", "links", "loops"});
 
   RobotDescription robot;
   robot.name = doc["name"] ? r.text(doc["name"], "name") : "chain";
@@ -144,6 +170,7 @@ RobotDescription parse_document(const std::string& path, const std::string& text
     parent = spec.name;
     parent_length = link["length"] ? r.number(link["length"], at + ".length") : 0.0;
   }
+  if (const YAML::Node loops = doc["loops"]) parse_loops(r, loops, robot);
   return robot;
 }
 

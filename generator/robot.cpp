@@ -1,5 +1,10 @@
 #include "robot.hpp"
 
+#include <fmt/format.h>
+#include <openssl/evp.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -11,11 +16,8 @@
 #include <set>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
-#include <fmt/format.h>
-#include <openssl/evp.h>
-
 #include "dyngen/aba.hpp"
+#include "dyngen/constrained.hpp"
 #include "dyngen/numerics/conditioning.hpp"
 #include "readers.hpp"
 
@@ -302,7 +304,110 @@ void select_frames(Model<double>& model, const ModelBuilder& builder,
   model.frames = kept;
 }
 
+/// The frame of the link named, as --contacts or a chain spec's loop names it, with the point
+/// at xyz in the link's frame as its origin.
+Frame<double> link_frame(const Model<double>& model, const std::string& name,
+                         const Vec3<double>& xyz, const std::string& where) {
+  const auto it = std::find_if(model.frames.begin(), model.frames.end(),
+                               [&](const Frame<double>& f) { return f.name == name; });
+  if (it == model.frames.end()) {
+    std::string links;
+    for (std::size_t k = 0; k < model.frames.size() && k < 40; ++k)
+      links += (k ? ", '" : "'") + model.frames[k].name + "'";
+    if (model.frames.size() > 40) links += fmt::format(" and {} more", model.frames.size() - 40);
+    throw InputError(fmt::format("{}: no link named '{}'; the links are {}", where, name, links));
+  }
+  Frame<double> f = *it;
+  // the point's offset, in the link's axes, moves the origin: X = xlt(xyz) X_link
+  f.placement.r = f.placement.r + mul_T(f.placement.E, xyz);
+  return f;
+}
+
+/// "FOOT", "FOOT:3d" or "FOOT:6d" (--contacts): the link and whether it is a surface contact.
+std::pair<std::string, bool> parse_contact(const std::string& text) {
+  const std::size_t colon = text.rfind(':');
+  if (colon != std::string::npos) {
+    const std::string kind = text.substr(colon + 1);
+    if (kind == "3d" || kind == "6d") return {text.substr(0, colon), kind == "6d"};
+  }
+  return {text, false};
+}
+
+/// The model's constraints: the contacts of --contacts (a link held to the world) and the file's
+/// loop closures, from the frames of every link (before --frames chooses some).
+void add_constraints(Model<double>& model, const std::vector<RobotDescription::Loop>& loops,
+                     const LoadOptions& options, const std::string& path) {
+  std::vector<Constraint<double>> constraints;
+  for (const std::string& text : options.contacts) {
+    const auto [link, six_d] = parse_contact(text);
+    const Frame<double> f = link_frame(model, link, {}, fmt::format("--contacts {}", text));
+    if (f.body < 0)
+      throw InputError(
+          fmt::format("--contacts {}: link '{}' is welded to the fixed base, so a "
+                      "contact there constrains nothing",
+                      text, link));
+    for (const Constraint<double>& c : constraints)
+      if (c.name.substr(0, c.name.rfind(':')) == link)
+        throw InputError(fmt::format("--contacts: link '{}' is given twice", link));
+    constraints.push_back({link + (six_d ? ":6d" : ":3d"), f.body, f.placement, -1,
+                           Xform<double>{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {}}, six_d, false});
+  }
+  for (const RobotDescription::Loop& loop : loops) {
+    const std::string where = fmt::format("{}: loop {}-{}", path, loop.link_a, loop.link_b);
+    const Frame<double> a = link_frame(model, loop.link_a, loop.xyz_a, where);
+    const Frame<double> b = link_frame(model, loop.link_b, loop.xyz_b, where);
+    if (a.body == b.body)
+      throw InputError(where +
+                       ": both links are on one rigid body, so the loop constrains nothing");
+    constraints.push_back(
+        {fmt::format("{}-{}:{}", loop.link_a, loop.link_b, loop.six_d ? "6d" : "3d"), a.body,
+         a.placement, b.body, b.placement, loop.six_d, true});
+  }
+  if (!constraints.empty() && model.nv > Workspace<double>::max_matrix_nv)
+    throw InputError(
+        fmt::format("{}: constraints need M factorised, which dyngen does for at most "
+                    "{} degrees of freedom; the robot has {}",
+                    path, Workspace<double>::max_matrix_nv, model.nv));
+  set_constraints(model, std::move(constraints), options.constraint_settings);
+}
+
 }  // namespace
+
+std::vector<std::string> redundant_constraints(const Model<double>& model) {
+  if (model.nc == 0) return {};
+  Workspace<double> ws(model);
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  std::vector<double> q(static_cast<std::size_t>(model.nq));
+  std::set<std::string> names;
+  for (int sample = 0; sample < 3; ++sample) {
+    for (double& x : q) x = uniform(random);
+    normalize_configuration<double>(model, q);
+    detail::body_placements<double>(model, ws, q);
+    detail::constraint_jacobians(model, ws, false);
+    const Eigen::MatrixXd J =
+        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+            ws.Jc.data(), model.nc, model.nv);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullU);
+    const Eigen::VectorXd& s = svd.singularValues();
+    const double tol = 1e-9 * (s.size() > 0 ? s[0] : 0.0);
+    int rank = 0;
+    while (rank < s.size() && s[rank] > tol) ++rank;
+    // a combination w of the rows with w^T J = 0: the constraints with a part in it
+    for (int k = rank; k < model.nc; ++k) {
+      int row = 0;
+      for (const Constraint<double>& c : model.constraints) {
+        for (int r = 0; r < constraint_rows(c); ++r)
+          if (std::abs(svd.matrixU()(row + r, k)) > 1e-6) names.insert(c.name);
+        row += constraint_rows(c);
+      }
+    }
+  }
+  std::vector<std::string> out;
+  for (const Constraint<double>& c : model.constraints)
+    if (names.count(c.name)) out.push_back(c.name);
+  return out;
+}
 
 Robot load_robot(const std::string& path, const LoadOptions& options) {
   return parse_robot(path, read_file(path), options);
@@ -386,6 +491,14 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
         robot.model.nv, max_nv));
   if (options.mimic_independent) warn_independent_mimics(robot, description.mimics);
   if (options.snap) robot.snapped = snap(robot.model, *options.snap);
+  add_constraints(robot.model, description.loops, options, path);
+  if (const std::vector<std::string> r = redundant_constraints(robot.model); !r.empty())
+    robot.warnings.push_back(fmt::format(
+        "{}: the rows of the constraints {} are not independent ({} rows in all): "
+        "contact_dynamics and impulse_dynamics return the minimum-norm lambda, from a "
+        "proximal solve damped by {:g} of the operational-space inertia's mean diagonal; a "
+        "state whose velocities break the constraints makes lambda grow as 1 / damping",
+        path, fmt::join(r, ", "), robot.model.nc, robot.model.constraint_settings.damping));
   if (!options.all_frames) select_frames(robot.model, builder, options.frames, path);
   return robot;
 }

@@ -39,6 +39,14 @@ struct RobotDescription {
   /// The root link is the world, whose bodies float by their own free joints (MJCF), not a
   /// robot link that --floating-base could put on one.
   bool root_is_world = false;
+  /// Loop closures (a chain spec's loops): the point at xyz in link a's frame held to the point
+  /// at xyz in link b's, and with six_d their orientations too.
+  struct Loop {
+    std::string link_a, link_b;
+    Vec3<double> xyz_a{}, xyz_b{};
+    bool six_d = false;
+  };
+  std::vector<Loop> loops;
 };
 
 /// A file's bytes; InputError naming the path and the system's reason when it cannot be read.
@@ -57,6 +65,10 @@ struct LoadOptions {
   /// Rotor inertias (--armature), in the order given: (joint, value), joint "all" for every
   /// revolute, prismatic and planar joint.
   std::vector<std::pair<std::string, double>> armature;
+  /// Contacts (--contacts): "FRAME", "FRAME:3d" or "FRAME:6d", a link held to the world; and
+  /// the settings of the constrained algorithms (--baumgarte, --restitution).
+  std::vector<std::string> contacts;
+  ConstraintSettings<double> constraint_settings;
 };
 
 struct Robot {
@@ -89,6 +101,11 @@ Robot load_robot(const std::string& path, const LoadOptions& options = {});
 /// The same for a file's text, read from `path` (whose extension, and for .xml the root
 /// element, says the format).
 Robot parse_robot(const std::string& path, const std::string& text, const LoadOptions& options);
+
+/// Rows of the constraints that depend on the others at sampled states (their rank falls short
+/// of their rows): the names of the constraints that take part, empty when the rows are
+/// independent. contact_dynamics then returns the minimum-norm lambda of the proximal solve.
+std::vector<std::string> redundant_constraints(const Model<double>& model);
 
 /// Joints whose articulated inertia D vanishes (ABA would divide by zero): D <= 1e-12 of the
 /// joint's own mass-matrix diagonal at any of a few sampled states. Joints above them, whose

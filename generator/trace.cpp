@@ -7,7 +7,8 @@
 namespace dyngen::gen {
 
 std::string extent_text(const Extent& e, const std::string& nq, const std::string& nv,
-                        const std::string& nframes, const std::string& nbodies) {
+                        const std::string& nframes, const std::string& nbodies,
+                        const std::string& nc) {
   std::vector<std::string> factors;
   if (e.per_frame) factors.push_back(nframes);
   if (e.per_body) factors.push_back(nbodies);
@@ -15,6 +16,7 @@ std::string extent_text(const Extent& e, const std::string& nq, const std::strin
   if (e.size == Extent::Nq) factors.push_back(nq);
   if (e.size == Extent::Nv) factors.push_back(nv);
   if (e.size == Extent::NvNv) factors.insert(factors.end(), {nv, nv});
+  if (e.size == Extent::Nc) factors.push_back(nc);
   std::string text;
   for (const std::string& f : factors) text += (text.empty() ? "" : " * ") + f;
   return text;

@@ -13,10 +13,11 @@ namespace dyngen::gen {
 /// An algorithm of the runtime's table (dyngen/algorithms.hpp), by its name: "rnea".
 using Algorithm = std::string;
 
-/// An extent as a C expression over the names of nq, nv and the numbers of frames and bodies:
-/// "nv * nv", "nframes * 6 * nv", "nbodies * 10 * nv", "3".
+/// An extent as a C expression over the names of nq, nv, the numbers of frames and bodies and
+/// the constraints' rows: "nv * nv", "nframes * 6 * nv", "nbodies * 10 * nv", "nc", "3".
 std::string extent_text(const Extent& e, const std::string& nq, const std::string& nv,
-                        const std::string& nframes, const std::string& nbodies);
+                        const std::string& nframes, const std::string& nbodies,
+                        const std::string& nc);
 
 /// The names in the runtime's table, in its order.
 std::vector<Algorithm> algorithm_names();

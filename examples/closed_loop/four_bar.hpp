@@ -1,8 +1,11 @@
-// A four-bar linkage simulated as the generated open chain (four_bar.urdf: crank, coupler,
-// rocker) plus a loop constraint that holds the rocker's tip on the ground pivot. Each step
-// solves the KKT system of the constrained dynamics, with Baumgarte stabilisation, and advances
-// by the classical Runge-Kutta method (RK4) at a fixed step. Everything in the loop is
-// fixed-size: no heap.
+// A four-bar linkage (four_bar.yaml: crank, coupler and rocker in a chain, and a loop closure
+// that holds the rocker's tip on the ground pivot) simulated from the generated
+// contact_dynamics, which solves the loop's constrained dynamics inside the generated code, and
+// advanced by the classical Runge-Kutta method (RK4) at a fixed step. Two packages of the same
+// file: four_bar, generated with Baumgarte stabilisation (--baumgarte 400,40), and
+// four_bar_free, without. The loop's position error, the energy and the closed-form kinematics
+// come from the generated frame placements, Jacobians, CRBA and centre of mass. Everything in
+// the loop is fixed-size: no heap.
 #pragma once
 
 #include <Eigen/Dense>
@@ -12,18 +15,19 @@
 #include <numbers>
 
 #include "four_bar_dynamics.hpp"
+#include "four_bar_free_dynamics.hpp"
 #include "four_bar_model.hpp"
 
 namespace closed_loop {
 
 constexpr int nv = four_bar::nv;
-constexpr int tip = 0, ground_pivot = 1;  // frame indices, in the order of dyngen's --frames
-static_assert(four_bar::nq == nv && four_bar::nframes == 2);
+static_assert(four_bar::nq == nv && four_bar::nframes == 1 && four_bar::nc == 3);
 
 using Vector = Eigen::Matrix<double, nv, 1>;
 using Vector2 = Eigen::Vector2d;
+using Vector3 = Eigen::Vector3d;
 
-/// The link lengths of four_bar.urdf, for the closed-form kinematics: stated here, not read from
+/// The link lengths of four_bar.yaml, for the closed-form kinematics: stated here, not read from
 /// the generated code, so that the closed form checks it.
 struct Lengths {
   double crank = 0.2, coupler = 0.5, rocker = 0.4, ground = 0.45;
@@ -33,74 +37,50 @@ struct State {
   Vector q, v;
 };
 
-/// Baumgarte stabilisation: the constraint error phi is made to obey
-/// phi'' + 2 alpha phi' + beta^2 phi = 0 instead of phi'' = 0. Zero gains: no stabilisation.
-struct Stabilisation {
-  double alpha = 0, beta = 0;  // 1/s
-};
+/// A package's constrained dynamics: the generated contact_dynamics of four_bar (stabilised) or
+/// four_bar_free.
+using ContactDynamics = void (*)(const double*, const double*, const double*, double*,
+                                 double*) noexcept;
+inline constexpr ContactDynamics stabilised = four_bar::contact_dynamics;
+inline constexpr ContactDynamics unstabilised = four_bar_free::contact_dynamics;
 
-// The example's set-up: the step, the gains (critically damped, alpha = beta: an error decays
-// with a time constant of 1 / beta) and the assembly mode (the branch of rocker_angle).
+// The example's set-up: the step and the assembly mode (the branch of rocker_angle). The gains
+// of four_bar's --baumgarte KP,KD = 400,40 make the loop's error obey
+// e'' + 40 e' + 400 e = 0: critically damped, a time constant of 50 ms.
 inline constexpr double step = 1e-3;  // s
-inline constexpr Stabilisation baumgarte{20, 20};
 inline constexpr int assembly = 1;
 
-/// The loop at one state: the open chain's dynamics and the constraint's two rows, x and y of
-/// the tip relative to the ground pivot. The other rows of a revolute loop joint (z, and the
-/// rotations about x and y) hold by themselves in a planar linkage; their zero rows would make
-/// the KKT matrix singular.
+/// The loop at one state, from the generated functions: the tip's position error (x and y of
+/// the tip relative to the ground pivot; z holds by itself in the plane), its Jacobian, the mass
+/// matrix and the centre of mass.
 struct Loop {
-  Eigen::Matrix<double, nv, nv> M;  // mass matrix
-  Vector h;                         // C(q, v) v + g(q)
   Vector2 phi;                      // position error, m
   Eigen::Matrix<double, 2, nv> J;   // d phi / dq
-  Vector2 Jdot_v;                   // phi'' at qdd = 0
-  Eigen::Vector3d com;              // centre of mass, m
+  Eigen::Matrix<double, nv, nv> M;  // mass matrix
+  Vector3 com;                      // centre of mass, m
 };
 
-/// The loop at x, from the generated functions (one joint_trig shared by all of them).
+/// The tip in the rocker's frame and the ground pivot in the base's (four_bar.yaml's loop).
+inline const Vector3 tip_on_rocker{0.4, 0, 0}, ground_pivot{0.45, 0, 0};
+
 inline Loop evaluate(const State& x) {
-  using four_bar::nframes;
-  four_bar::JointTrig trig;
-  four_bar::joint_trig(x.q.data(), trig);
-  double M[nv * nv], R[nframes * 9], p[nframes * 3], J[nframes * 6 * nv], Jdot_v[nframes * 6],
-      Jc[3 * nv];
+  double R[9], p[3], J[6 * nv], M[nv * nv], Jc[3 * nv];
+  four_bar::frame_placements(x.q.data(), R, p);
+  four_bar::frame_jacobians(x.q.data(), J);
   Loop loop;
-  four_bar::crba_trig(x.q.data(), trig, M);
+  four_bar::crba(x.q.data(), M);
   loop.M = Eigen::Map<const Eigen::Matrix<double, nv, nv, Eigen::RowMajor>>(M);
-  four_bar::nle_trig(x.q.data(), trig, x.v.data(), loop.h.data());
-  four_bar::frame_placements_trig(x.q.data(), trig, R, p);
-  four_bar::frame_jacobians_trig(x.q.data(), trig, J);
-  four_bar::frame_accelerations_trig(x.q.data(), trig, x.v.data(), Jdot_v);
-  four_bar::com_trig(x.q.data(), trig, loop.com.data(), Jc);
-  // the linear rows come first, in base axes: row i of frame f is (6 f + i)
-  for (int i = 0; i < 2; ++i) {
-    loop.phi[i] = p[3 * tip + i] - p[3 * ground_pivot + i];
-    for (int j = 0; j < nv; ++j)
-      loop.J(i, j) = J[(6 * tip + i) * nv + j] - J[(6 * ground_pivot + i) * nv + j];
-    loop.Jdot_v[i] = Jdot_v[6 * tip + i] - Jdot_v[6 * ground_pivot + i];
-  }
+  four_bar::com(x.q.data(), loop.com.data(), Jc);
+  // the tip at r = R t from the rocker's origin: p_tip = p + r, J_tip = J_lin - [r]x J_ang
+  const Vector3 r =
+      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R) * tip_on_rocker;
+  const Eigen::Map<const Eigen::Matrix<double, 6, nv, Eigen::RowMajor>> Jr(J);
+  Eigen::Matrix3d skew;
+  skew << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  const Eigen::Matrix<double, 3, nv> J_tip = Jr.topRows<3>() - skew * Jr.bottomRows<3>();
+  loop.phi = (Eigen::Map<const Vector3>(p) + r - ground_pivot).head<2>();
+  loop.J = J_tip.topRows<2>();
   return loop;
-}
-
-/// The constrained accelerations and the constraint force: the solution of
-///   [M J^T] [ qdd   ]   [ tau - h                                ]
-///   [J  0 ] [-lambda] = [ -Jdot_v - 2 alpha J v - beta^2 phi     ]
-/// lambda is the force the ground pivot exerts on the tip (N, base axes).
-struct Constrained {
-  Vector qdd;
-  Vector2 lambda;
-};
-
-inline Constrained constrained_acceleration(const Loop& loop, const Vector& v, const Vector& tau,
-                                            Stabilisation s) {
-  Eigen::Matrix<double, nv + 2, nv + 2> K;
-  K << loop.M, loop.J.transpose(), loop.J, Eigen::Matrix2d::Zero();
-  Eigen::Matrix<double, nv + 2, 1> rhs;
-  rhs << tau - loop.h, -loop.Jdot_v - 2 * s.alpha * (loop.J * v) - s.beta * s.beta * loop.phi;
-  // K is symmetric but indefinite (M's block positive, the zero block's pivots negative): LU
-  const Eigen::Matrix<double, nv + 2, 1> x = K.partialPivLu().solve(rhs);
-  return {x.head<nv>(), -x.tail<2>()};
 }
 
 /// Total mass, from the generated model's records.
@@ -112,7 +92,7 @@ inline const double total_mass = [] {
 
 /// Total energy: kinetic 1/2 v^T M v, potential -m g . c from the centre of mass.
 inline double energy(const Loop& loop, const State& x) {
-  const Eigen::Map<const Eigen::Vector3d> g(four_bar::model_gravity);
+  const Eigen::Map<const Vector3> g(four_bar::model_gravity);
   return 0.5 * x.v.dot(loop.M * x.v) - total_mass * g.dot(loop.com);
 }
 
@@ -150,24 +130,31 @@ inline State initial_state(double theta2 = 0, double omega = 8, int branch = ass
   return x;
 }
 
-/// One step of the classical fourth-order Runge-Kutta method under joint forces tau, from x,
-/// whose loop at_x is already evaluated.
-inline State rk4_step(const State& x, const Loop& at_x, double h, const Vector& tau,
-                      Stabilisation s) {
-  // the time derivative (v, qdd) of a state
-  auto rate = [&](const State& y, const Loop& loop) -> State {
-    return {y.v, constrained_acceleration(loop, y.v, tau, s).qdd};
+/// The constrained accelerations and the loop's force on the rocker's tip (N, base axes; the
+/// redundant z row's is zero).
+struct Constrained {
+  Vector qdd;
+  Vector3 lambda;
+};
+
+inline Constrained constrained_acceleration(ContactDynamics f, const State& x, const Vector& tau) {
+  Constrained c;
+  f(x.q.data(), x.v.data(), tau.data(), c.qdd.data(), c.lambda.data());
+  return c;
+}
+
+/// One step of the classical fourth-order Runge-Kutta method under joint forces tau.
+inline State rk4_step(ContactDynamics f, const State& x, double h, const Vector& tau) {
+  auto rate = [&](const State& y) -> State {
+    return {y.v, constrained_acceleration(f, y, tau).qdd};
   };
   auto advance = [](const State& y, double c, const State& d) -> State {
     return {y.q + c * d.q, y.v + c * d.v};
   };
-  const State k1 = rate(x, at_x);
-  const State x2 = advance(x, h / 2, k1);
-  const State k2 = rate(x2, evaluate(x2));
-  const State x3 = advance(x, h / 2, k2);
-  const State k3 = rate(x3, evaluate(x3));
-  const State x4 = advance(x, h, k3);
-  const State k4 = rate(x4, evaluate(x4));
+  const State k1 = rate(x);
+  const State k2 = rate(advance(x, h / 2, k1));
+  const State k3 = rate(advance(x, h / 2, k2));
+  const State k4 = rate(advance(x, h, k3));
   return {x.q + h / 6 * (k1.q + 2 * k2.q + 2 * k3.q + k4.q),
           x.v + h / 6 * (k1.v + 2 * k2.v + 2 * k3.v + k4.v)};
 }
@@ -183,7 +170,7 @@ struct Window {
 /// Seconds of free motion (tau = 0) from x at step h: the constraint's drift, the energy's
 /// and the distance to the closed-form kinematics (assembly mode branch), second by second.
 template <int Seconds>
-std::array<Window, Seconds> rollout(State x, double h, Stabilisation s, int branch) {
+std::array<Window, Seconds> rollout(ContactDynamics f, State x, double h, int branch) {
   const int steps = static_cast<int>(std::lround(1 / h));
   const Vector tau = Vector::Zero();
   std::array<Window, Seconds> windows{};
@@ -196,7 +183,7 @@ std::array<Window, Seconds> rollout(State x, double h, Stabilisation s, int bran
       w.energy = std::max(w.energy, std::abs(energy(loop, x) - E0));
       const double error = simulated_rocker_angle(x) - rocker_angle(x.q[0], branch);
       w.rocker = std::max(w.rocker, std::abs(std::remainder(error, 2 * std::numbers::pi)));
-      x = rk4_step(x, loop, h, tau, s);
+      x = rk4_step(f, x, h, tau);
     }
   return windows;
 }

@@ -169,6 +169,11 @@ const std::vector<Case> bad_robots = {
      {"gravity (0, 0, -1e+308) m/s^2 exceeds 1e+50 in magnitude"}},
     {"ChainSubnormalPivot", bad + "/subnormal_pivot.yaml", {},
      {"ABA is undefined", "1 joint moves no mass", "'link1_joint'"}},
+    // a chain spec's loop closures, checked once the model is built
+    {"LoopUnknownLink", bad + "/loop_unknown_link.yaml", {},
+     {"loop_unknown_link.yaml: loop link2-base: no link named 'link2'; the links are"}},
+    {"LoopOnOneBody", bad + "/loop_one_body.yaml", {},
+     {"loop link1-tip: both links are on one rigid body, so the loop constrains nothing"}},
 };
 
 /// Options that only the command line parses.
@@ -242,6 +247,29 @@ const std::vector<Case> bad_options = {
      {"--scalar", "float", "--algorithms", "aba"},
      {"float_overflow.yaml: aba overflows in float: it computes inf from the model's constants",
       "at link 'link1' (acceleration pass)", "--scalar double"}},
+    // constraints: links that are not there or cannot move, a kind other than 3d and 6d (read as
+    // part of the name), gains and restitution out of range, algorithms that need constraints
+    {"ContactUnknownLink", models + "/ur5.urdf", {"--contacts", "tool0,toe"},
+     {"--contacts toe: no link named 'toe'", "'tool0'"}},
+    {"ContactUnknownKind", models + "/ur5.urdf", {"--contacts", "tool0:5d"},
+     {"--contacts tool0:5d: no link named 'tool0:5d'"}},
+    {"ContactOnTheFixedBase", models + "/ur5.urdf", {"--contacts", "base_link"},
+     {"--contacts base_link: link 'base_link' is welded to the fixed base, so a contact there "
+      "constrains nothing"}},
+    {"ContactTwice", models + "/ur5.urdf", {"--contacts", "tool0:3d,tool0:6d"},
+     {"--contacts: link 'tool0' is given twice"}},
+    {"ContactsEmptyItem", models + "/ur5.urdf", {"--contacts", "tool0,"},
+     {"--contacts: 'tool0,' has an empty name"}},
+    {"BaumgarteOneGain", models + "/ur5.urdf", {"--contacts", "tool0", "--baumgarte", "10"},
+     {"--baumgarte 10: expected KP,KD"}},
+    {"BaumgarteNegative", models + "/ur5.urdf", {"--contacts", "tool0", "--baumgarte", "10,-1"},
+     {"--baumgarte 10,-1: '-1' is not a finite number >= 0"}},
+    {"RestitutionAboveOne", models + "/ur5.urdf", {"--contacts", "tool0", "--restitution", "1.5"},
+     {"--restitution: 1.5 is not between 0 and 1"}},
+    {"ContactDynamicsWithoutContacts", models + "/ur5.urdf",
+     {"--algorithms", "rnea,contact_dynamics"},
+     {"--algorithms: contact_dynamics needs constraints: give --contacts LINK[:3d|:6d],... or a "
+      "chain spec with loops"}},
     // constants within float's range, products beyond it at the check's random states
     {"FloatOverflowAtTypicalStates", bad + "/float_overflow_typical.yaml", {"--scalar", "float"},
      {"float_overflow_typical.yaml: rnea overflows in float at typical states",
@@ -579,6 +607,35 @@ TEST(Warnings, ImperfectUrdfLoadsWithOneWarningPerOddity) {
 
 TEST(Warnings, CleanRobotHasNone) {
   EXPECT_TRUE(load_robot(models + "/planar5.yaml").warnings.empty());
+}
+
+// Constraints whose rows depend on each other are solved (minimum-norm forces) with a warning
+// that names them: four feet in 6d lock solo12 with 24 rows for 18 degrees of freedom, and the
+// four-bar's planar loop has a row along z that holds by itself; four point feet do not.
+TEST(Warnings, DependentConstraintsAreNamed) {
+  const auto dependent = [](const std::string& path, std::vector<std::string> contacts) {
+    LoadOptions options;
+    options.floating_base = !contacts.empty();
+    options.contacts = std::move(contacts);
+    for (const std::string& w : load_robot(path, options).warnings)
+      if (w.find("are not independent") != std::string::npos) return w;
+    return std::string();
+  };
+  const std::string solo12 = models + "/solo12.urdf";
+  const std::string six =
+      dependent(solo12, {"FL_FOOT:6d", "FR_FOOT:6d", "HL_FOOT:6d", "HR_FOOT:6d"});
+  EXPECT_NE(six.find("the rows of the constraints FL_FOOT:6d, FR_FOOT:6d, HL_FOOT:6d, "
+                     "HR_FOOT:6d are not independent (24 rows in all)"),
+            std::string::npos)
+      << six;
+  EXPECT_NE(six.find("minimum-norm lambda"), std::string::npos) << six;
+  EXPECT_NE(six.find("damped by 1e-10"), std::string::npos) << six;
+  EXPECT_EQ(dependent(solo12, {"FL_FOOT", "FR_FOOT", "HL_FOOT", "HR_FOOT"}), "");
+  const std::string loop =
+      dependent(std::string(DYNGEN_SOURCE_DIR) + "/examples/closed_loop/four_bar.yaml", {});
+  EXPECT_NE(loop.find("constraints rocker-base:3d are not independent (3 rows in all)"),
+            std::string::npos)
+      << loop;
 }
 
 using WarningsCommand = Scratch;

@@ -305,7 +305,10 @@ TEST_F(ChainSpec, ErrorsNameTheLineAndThePathOfTheValue) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"- 1\n", "chain spec: expected a mapping"},
       {"gravty: [0, 0, -9.81]\nlinks: [{mass: 1}]\n",
-       ":1: chain spec: unknown key 'gravty' (allowed: base, gravity, links, name)"},
+       ":1: chain spec: unknown key 'gravty' (allowed: base, gravity, links, loops, name)"},
+      {"links: [{mass: 1}]\nloops: [{a: link1, b: base, type: 4d}]\n",
+       ":2: loops[0].type: '4d' is not 3d or 6d"},
+      {"links: [{mass: 1}]\nloops: [{a: link1}]\n", ":2: loops[0]: missing 'b' (a link)"},
       {"name: [a, b]\nlinks: [{mass: 1}]\n", ":1: name: expected a string"},
       {"gravity: [0, 0]\nlinks: [{mass: 1}]\n", ":1: gravity: expected [x, y, z]"},
       {"name: x\n", "links: expected a non-empty list of links"},
@@ -376,14 +379,14 @@ TEST_F(ChainSpec, DocumentationListsEveryKeyTheParserAccepts) {
   std::set<std::string> keys;
   for (const std::string yaml :
        {"zzz: 1\n", "links: [{mass: 1, zzz: 1}]\n", "links: [{mass: 1, joint: {zzz: 1}}]\n",
-        "links: [{mass: 1, inertia: {zzz: 1}}]\n"}) {
+        "links: [{mass: 1, inertia: {zzz: 1}}]\n", "links: [{mass: 1}]\nloops: [{zzz: 1}]\n"}) {
     const std::string message = error(yaml);
     const std::optional<Groups> m = allowed.search(message);
     ASSERT_TRUE(m) << message;
     std::istringstream list((*m)[1]);
     for (std::string key; std::getline(list, key, ',');) keys.insert(key.substr(key[0] == ' '));
   }
-  EXPECT_EQ(keys.size(), 4u + 6 + 6 + 6 - 2) << "name is a key at three levels";
+  EXPECT_EQ(keys.size(), 5u + 6 + 6 + 6 + 5 - 3) << "name is a key at three levels, type at two";
   const std::string text = read(doc);
   for (const std::string& key : keys)
     EXPECT_NE(text.find("`" + key + "`"), std::string::npos) << "not documented: " << key;

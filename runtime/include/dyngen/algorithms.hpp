@@ -10,6 +10,7 @@
 
 #include "dyngen/aba.hpp"
 #include "dyngen/aba_derivatives.hpp"
+#include "dyngen/constrained.hpp"
 #include "dyngen/crba.hpp"
 #include "dyngen/frames.hpp"
 #include "dyngen/minv.hpp"
@@ -19,10 +20,11 @@
 
 namespace dyngen {
 
-/// The length of an array for a model: `count` times 1, nq, nv or nv * nv, and times the
-/// number of frames for an array with an entry per frame (a frame's Jacobian is 6 x nv).
+/// The length of an array for a model: `count` times 1, nq, nv, nv * nv or nc (the constraints'
+/// rows), and times the number of frames for an array with an entry per frame (a frame's
+/// Jacobian is 6 x nv).
 struct Extent {
-  enum Size { One, Nq, Nv, NvNv };
+  enum Size { One, Nq, Nv, NvNv, Nc };
   Size size = One;
   int count = 1;
   bool per_frame = false;
@@ -31,12 +33,13 @@ struct Extent {
   friend bool operator==(const Extent&, const Extent&) = default;
 };
 
-inline std::size_t extent_size(const Extent& e, int nq, int nv, int nframes, int nbodies) {
+inline std::size_t extent_size(const Extent& e, int nq, int nv, int nframes, int nbodies, int nc) {
   const std::size_t n = static_cast<std::size_t>(nv);
-  const std::size_t size = e.size == Extent::One  ? 1
-                           : e.size == Extent::Nq ? static_cast<std::size_t>(nq)
-                           : e.size == Extent::Nv ? n
-                                                  : n * n;
+  const std::size_t size = e.size == Extent::One    ? 1
+                           : e.size == Extent::Nq   ? static_cast<std::size_t>(nq)
+                           : e.size == Extent::Nv   ? n
+                           : e.size == Extent::NvNv ? n * n
+                                                    : static_cast<std::size_t>(nc);
   return size * static_cast<std::size_t>(e.count) *
          (e.per_frame ? static_cast<std::size_t>(nframes) : 1) *
          (e.per_body ? static_cast<std::size_t>(nbodies) : 1);
@@ -44,10 +47,12 @@ inline std::size_t extent_size(const Extent& e, int nq, int nv, int nframes, int
 
 template <class S>
 std::size_t extent_size(const Extent& e, const Model<S>& model) {
-  return extent_size(e, model.nq, model.nv, static_cast<int>(model.frames.size()), model.nbodies);
+  return extent_size(e, model.nq, model.nv, static_cast<int>(model.frames.size()), model.nbodies,
+                     model.nc);
 }
 
-inline constexpr Extent length_nq{Extent::Nq}, length_nv{Extent::Nv}, length_nv_nv{Extent::NvNv};
+inline constexpr Extent length_nq{Extent::Nq}, length_nv{Extent::Nv}, length_nv_nv{Extent::NvNv},
+    length_nc{Extent::Nc};
 
 /// An array of an algorithm's signature: its name (the same name means the same quantity in
 /// every algorithm), length and meaning, as the generated header documents it. Per frame f of
@@ -100,6 +105,13 @@ inline constexpr ArraySpec Jdot_v_array{
 inline constexpr ArraySpec Jdot_v_local_array{
     "Jdot_v_local", {Extent::One, 6, true},
     "each frame's acceleration at qdd = 0 in its own axes: J_local qdd + Jdot_v_local"};
+inline constexpr ArraySpec lambda_array{
+    "lambda", length_nc,
+    "constraint forces on frame A, per constraint: the force at its origin (3d), then the "
+    "moment about it (6d), base axes, N and N m"};
+inline constexpr ArraySpec v_plus_array{"v_plus", length_nv, "joint velocities after the impact"};
+inline constexpr ArraySpec impulse_array{
+    "impulse", length_nc, "constraint impulses on frame A, as lambda's forces, N s and N m s"};
 inline constexpr ArraySpec c_array{"c", {Extent::One, 3}, "centre of mass, base coordinates"};
 inline constexpr ArraySpec Jc_array{"Jc", {Extent::Nv, 3},
                                     "Jacobian of the centre of mass, 3 x nv row-major"};
@@ -127,6 +139,10 @@ using AlgorithmOutputs = std::span<const std::span<S>>;
 /// of freedom between each frame and the base, in an output of 6 nv entries per frame.
 enum class Growth { Linear, ColumnSteps, Dense, FrameColumns };
 
+/// What an algorithm needs of the model beyond its tree: frames (Model::frames) or constraints
+/// (Model::constraints, --contacts); the generator leaves out an algorithm whose model lacks it.
+enum class Needs { Tree, Constraints };
+
 /// Which of the three quantities that every rigid-body dynamics library computes an algorithm
 /// gives, so that dyngen can compare ways of computing them without naming algorithms: bench/
 /// times each against the peers (MuJoCo, KDL) that compute it too, and dyngen report measures
@@ -150,6 +166,7 @@ struct AlgorithmSpec {
   std::string_view title = {};
   Computes computes = Computes::Other;
   bool in_default_set = false;  // generated when --algorithms is not given
+  Needs needs = Needs::Tree;
 };
 
 template <class S>
@@ -259,6 +276,24 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          regressor<S>(m, ws, in[0], in[1], in[2], out[0]);
        }},
+      {"contact_dynamics",
+       "Forward dynamics under the constraints (--contacts): M qdd + h = tau + J^T lambda with "
+       "J qdd + Jdot v = -kd J v - kp e (Baumgarte).",
+       {q_array, v_array, tau_array}, {qdd_array, lambda_array},
+       Growth::Dense, true,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         contact_dynamics<S>(m, ws, in[0], in[1], in[2], out[0], out[1]);
+       },
+       {}, Computes::Other, false, Needs::Constraints},
+      {"impulse_dynamics",
+       "The impulse of the constraints at impact (--contacts), from the velocities v before it: "
+       "M (v_plus - v) = J^T impulse with J v_plus = -e J v (e: --restitution).",
+       {q_array, v_array}, {v_plus_array, impulse_array},
+       Growth::Dense, true,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         impulse_dynamics<S>(m, ws, in[0], in[1], out[0], out[1]);
+       },
+       {}, Computes::Other, false, Needs::Constraints},
   };
   return table;
 }

@@ -73,10 +73,42 @@ void frame_placements(const Model<S>& model, Workspace<S>& ws, std::span<const S
   }
 }
 
+namespace detail {
+
+/// Writes the Jacobian of a frame on body b, placed at X (base to frame), into J's rows (6 x nv
+/// row-major, linear first; only the first `rows`), or with `subtract` takes it from them: in
+/// base axes at the frame's origin or in its own. Column c of joint j on b's path to the base is
+/// j's motion subspace column s in base coordinates, s0 = X_j0^-1 s (a motion at the base
+/// origin), moved to the frame's origin p: (s0.lin + s0.ang x p, s0.ang); the other columns are
+/// untouched, and those that mimic joints share are added to. After body_placements.
+template <class S>
+void put_frame_jacobian(const Model<S>& model, const Workspace<S>& ws, int b, const Xform<S>& X,
+                        JacobianAxes axes, int rows, bool subtract, S* J) {
+  const int nv = model.nv;
+  for (int j = b; j >= 0; j = model.parent[j]) {
+    TraceHook<S>::enter(j, Pass::JacobianColumns);
+    for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
+      const Motion<S> s0 = apply_motion_inv(ws.X0[j], joint_column(model, j, d));
+      Vec3<S> lin = s0.lin + cross(s0.ang, X.r), ang = s0.ang;
+      if (axes == JacobianAxes::Local) lin = mul(X.E, lin), ang = mul(X.E, ang);
+      const int c = model.v_index[j] + d;
+      const S column[6] = {lin.x, lin.y, lin.z, ang.x, ang.y, ang.z};
+      for (int row = 0; row < rows; ++row) {
+        S& e = J[row * nv + c];
+        if (subtract)
+          e = e - column[row];
+        else
+          put_entry(ws.shares_column[j], e, column[row]);
+      }
+    }
+  }
+}
+
+}  // namespace detail
+
 /// Each frame's Jacobian at q: J v = (velocity of the frame's origin, angular velocity), in the
-/// base's axes or the frame's own. Column c of joint j on the frame's path to the base is j's
-/// motion subspace column s in base coordinates, s0 = X_j0^-1 s (a motion at the base origin),
-/// moved to the frame's origin p: (s0.lin + s0.ang x p, s0.ang); the other columns are zero.
+/// base's axes or the frame's own (detail::put_frame_jacobian); columns of joints off the
+/// frame's path to the base are zero.
 template <class S>
 void frame_jacobians(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                      JacobianAxes axes, std::span<S> J) {
@@ -87,34 +119,22 @@ void frame_jacobians(const Model<S>& model, Workspace<S>& ws, std::span<const S>
     for (int e = 0; e < 6 * nv; ++e) Jf[e] = S(0);
     TraceHook<S>::enter(model.frames[f].body, Pass::Frames);
     const Xform<S> X = detail::frame_transform(model, ws, f);
-    for (int j = model.frames[f].body; j >= 0; j = model.parent[j]) {
-      TraceHook<S>::enter(j, Pass::JacobianColumns);
-      for (int d = 0; d < joint_nv(model.joint_type[j]); ++d) {
-        const Motion<S> s0 = apply_motion_inv(ws.X0[j], joint_column(model, j, d));
-        Vec3<S> lin = s0.lin + cross(s0.ang, X.r), ang = s0.ang;
-        if (axes == JacobianAxes::Local) lin = mul(X.E, lin), ang = mul(X.E, ang);
-        const int c = model.v_index[j] + d;
-        const S column[6] = {lin.x, lin.y, lin.z, ang.x, ang.y, ang.z};
-        for (int row = 0; row < 6; ++row)
-          detail::put_entry(ws.shares_column[j], Jf[row * nv + c], column[row]);
-      }
-    }
+    detail::put_frame_jacobian(model, ws, model.frames[f].body, X, axes, 6, false, Jf);
   }
 }
 
-/// Each frame's bias acceleration at q, v: the classical acceleration of its origin and its
-/// angular acceleration at qdd = 0, 6 per frame (linear first), so that a frame's acceleration is
-/// J qdd + this (Jdot v); in the base's axes or the frame's own. The bodies' velocities and
-/// spatial accelerations at qdd = 0 in base coordinates, where a joint's motion vJ0 = X_i0^-1 vJ
-/// turns with its body: v_i = v_p + vJ0, a_i = a_p + v_p x vJ0 (RBDA eq. 5.7 with qdd = 0, as
-/// v_i x vJ0 = v_p x vJ0); then at the origin p: a.lin + a.ang x p + w x (v.lin + w x p).
+namespace detail {
+
+/// The bodies' velocities ws.v and spatial accelerations ws.a at qdd = 0, in base coordinates,
+/// and their placements: a joint's motion vJ0 = X_i0^-1 vJ turns with its body, v_i = v_p + vJ0,
+/// a_i = a_p + v_p x vJ0 (RBDA eq. 5.7 with qdd = 0, as v_i x vJ0 = v_p x vJ0).
 template <class S>
-void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
-                              std::span<const S> v, JacobianAxes axes, std::span<S> out) {
+void body_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
+                             std::span<const S> v) {
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Velocity);
     const int p = model.parent[i];
-    detail::place_body(model, ws, q, i);
+    place_body(model, ws, q, i);
     const Motion<S> vJ0 = apply_motion_inv(ws.X0[i], joint_motion(model, i, &v[model.v_index[i]]));
     if (p < 0) {
       ws.v[i] = vJ0;
@@ -124,19 +144,45 @@ void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span
       ws.a[i] = ws.a[p] + cross_motion(ws.v[p], vJ0);
     }
   }
+}
+
+/// The velocity of the origin p = X.r of a frame on body b, and its angular velocity, in base
+/// axes, after body_bias_accelerations (the base, b = -1, does not move).
+template <class S>
+Motion<S> frame_velocity(const Workspace<S>& ws, int b, const Xform<S>& X) {
+  if (b < 0) return {};
+  const Motion<S>& v0 = ws.v[b];
+  return {v0.ang, v0.lin + cross(v0.ang, X.r)};
+}
+
+/// The classical acceleration of that origin and the frame's angular acceleration at qdd = 0,
+/// in base axes, after body_bias_accelerations: a.lin + a.ang x p + w x (v.lin + w x p).
+template <class S>
+Motion<S> frame_bias_acceleration(const Workspace<S>& ws, int b, const Xform<S>& X) {
+  if (b < 0) return {};
+  const Motion<S>& v0 = ws.v[b];
+  const Motion<S>& a0 = ws.a[b];
+  const Vec3<S> v_origin = v0.lin + cross(v0.ang, X.r);
+  return {a0.ang, a0.lin + cross(a0.ang, X.r) + cross(v0.ang, v_origin)};
+}
+
+}  // namespace detail
+
+/// Each frame's bias acceleration at q, v: the classical acceleration of its origin and its
+/// angular acceleration at qdd = 0, 6 per frame (linear first), so that a frame's acceleration is
+/// J qdd + this (Jdot v); in the base's axes or the frame's own
+/// (detail::frame_bias_acceleration).
+template <class S>
+void frame_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
+                              std::span<const S> v, JacobianAxes axes, std::span<S> out) {
+  detail::body_bias_accelerations(model, ws, q, v);
   for (int f = 0; f < static_cast<int>(model.frames.size()); ++f) {
     S* o = &out[6 * f];
     const int b = model.frames[f].body;
     TraceHook<S>::enter(b, Pass::Frames);
-    if (b < 0) {
-      for (int k = 0; k < 6; ++k) o[k] = S(0);
-      continue;
-    }
-    const Xform<S> X = detail::frame_transform(model, ws, f);
-    const Motion<S>& v0 = ws.v[b];
-    const Motion<S>& a0 = ws.a[b];
-    const Vec3<S> v_origin = v0.lin + cross(v0.ang, X.r);
-    Vec3<S> lin = a0.lin + cross(a0.ang, X.r) + cross(v0.ang, v_origin), ang = a0.ang;
+    const Xform<S> X = b < 0 ? Xform<S>{} : detail::frame_transform(model, ws, f);
+    const Motion<S> a = detail::frame_bias_acceleration(ws, b, X);
+    Vec3<S> lin = a.lin, ang = a.ang;
     if (axes == JacobianAxes::Local) lin = mul(X.E, lin), ang = mul(X.E, ang);
     o[0] = lin.x, o[1] = lin.y, o[2] = lin.z, o[3] = ang.x, o[4] = ang.y, o[5] = ang.z;
   }

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "dyngen/spatial.hpp"
@@ -65,6 +67,47 @@ struct Frame {
   Xform<S> placement;   // from the body's coordinates to the frame's, as X_tree
 };
 
+/// A constraint on the robot's motion (constrained.hpp): frame A, on body_a at placement_a (from
+/// the body's coordinates, as X_tree), held to frame B, on body_b at placement_b (-1: the base).
+/// A 3d constraint holds A's origin to B's; a 6d one also holds its orientation. A contact holds
+/// A where it touched the world, which the model does not know; a loop closure holds A to B,
+/// whose position error Baumgarte's kp acts on. Its multiplier lambda acts on A (and minus it on
+/// B): the force at A's origin, then for 6d the moment about it, in base axes.
+template <class S>
+struct Constraint {
+  std::string name;
+  int body_a = -1;
+  Xform<S> placement_a;
+  int body_b = -1;
+  Xform<S> placement_b;
+  bool six_d = false;
+  bool loop = false;
+};
+
+/// Rows of a constraint: 3 (point) or 6 (surface, or a welded loop).
+template <class S>
+int constraint_rows(const Constraint<S>& c) {
+  return c.six_d ? 6 : 3;
+}
+
+/// How the constrained algorithms solve (constrained.hpp): Baumgarte gains on the constraints'
+/// velocity (kd, 1/s) and position error (kp, 1/s^2, loop closures), the restitution of impulses,
+/// and the relative damping of the proximal solve.
+template <class S>
+struct ConstraintSettings {
+  S kp{}, kd{}, restitution{};
+  S damping = default_damping();
+
+  /// 1e-10 for float and double (docs/design.md, "Constraints"); other scalars (the tracer's,
+  /// MPFR's) take their settings from a double model by cast().
+  static S default_damping() {
+    if constexpr (std::is_arithmetic_v<S>)
+      return S(1e-10);
+    else
+      return S{};
+  }
+};
+
 template <class S>
 struct Model {
   int nbodies = 0;                     // bodies, not counting the fixed base
@@ -92,6 +135,10 @@ struct Model {
   std::vector<int> mimic;
   std::vector<S> mimic_multiplier, mimic_offset;
   std::vector<char> mimic_mirrors;  // [nbodies] 1: multiplier -1, offset 0 (q_i = -q_p)
+  /// Contacts and loop closures (constrained.hpp), and the rows of their multipliers.
+  std::vector<Constraint<S>> constraints;
+  ConstraintSettings<S> constraint_settings;
+  int nc = 0;
 
   /// The same model in another scalar type; each constant is converted with static_cast.
   template <class T>
@@ -120,6 +167,12 @@ struct Model {
     m.mimic_mirrors = mimic_mirrors;
     for (const S& x : mimic_multiplier) m.mimic_multiplier.push_back(c<T>(x));
     for (const S& x : mimic_offset) m.mimic_offset.push_back(c<T>(x));
+    for (const Constraint<S>& k : constraints)
+      m.constraints.push_back({k.name, k.body_a, cast_xform<T>(k.placement_a), k.body_b,
+                               cast_xform<T>(k.placement_b), k.six_d, k.loop});
+    const ConstraintSettings<S>& cs = constraint_settings;
+    m.constraint_settings = {c<T>(cs.kp), c<T>(cs.kd), c<T>(cs.restitution), c<T>(cs.damping)};
+    m.nc = nc;
     return m;
   }
 
@@ -235,13 +288,36 @@ struct MimicRecord {
   double multiplier, offset;
 };
 
+/// A constraint of a model as plain numbers (Model::constraints).
+struct ConstraintRecord {
+  const char* name;
+  int body_a;
+  double E_a[9], r_a[3];  // placement_a, E row-major
+  int body_b;
+  double E_b[9], r_b[3];
+  int rows;  // 3 or 6
+  int loop;  // 1: a loop closure, 0: a contact
+};
+
+/// Sets the model's constraints (Model::constraints, Model::nc) and their settings.
+template <class S>
+void set_constraints(Model<S>& model, std::vector<Constraint<S>> constraints,
+                     const ConstraintSettings<S>& settings) {
+  model.constraints = std::move(constraints);
+  model.constraint_settings = settings;
+  model.nc = 0;
+  for (const Constraint<S>& c : model.constraints) model.nc += constraint_rows(c);
+}
+
 /// Rebuilds a model from its records (the inverse of model_records()); armature: by degree of
 /// freedom (v's order), or empty.
 inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
                                         const double (&gravity)[3],
                                         std::span<const FrameRecord> frames = {},
                                         std::span<const double> armature = {},
-                                        std::span<const MimicRecord> mimics = {}) {
+                                        std::span<const MimicRecord> mimics = {},
+                                        std::span<const ConstraintRecord> constraints = {},
+                                        const ConstraintSettings<double>& settings = {}) {
   Model<double> m;
   m.nbodies = static_cast<int>(bodies.size());
   m.gravity = {gravity[0], gravity[1], gravity[2]};
@@ -271,6 +347,15 @@ inline Model<double> model_from_records(std::span<const BodyRecord> bodies,
     couple(m, mimic, multiplier, offset);
   }
   m.armature.assign(armature.begin(), armature.end());
+  std::vector<Constraint<double>> cs;
+  const auto xform = [](const double(&E)[9], const double(&r)[3]) {
+    return Xform<double>{{E[0], E[1], E[2], E[3], E[4], E[5], E[6], E[7], E[8]},
+                         {r[0], r[1], r[2]}};
+  };
+  for (const ConstraintRecord& c : constraints)
+    cs.push_back({c.name, c.body_a, xform(c.E_a, c.r_a), c.body_b, xform(c.E_b, c.r_b), c.rows == 6,
+                  c.loop == 1});
+  set_constraints(m, std::move(cs), settings);
   return m;
 }
 

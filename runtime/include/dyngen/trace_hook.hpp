@@ -24,6 +24,7 @@ enum class Pass : std::uint8_t {
   Factor,              // derivatives: M = L^T D L and its inverse
   Frames,              // frames: the placements and accelerations of the frames on a body
   JacobianColumns,     // frames, centre of mass, centroidal momentum: a joint's columns
+  Constraints,         // constraints: their accelerations, operational space and solve
 };
 
 inline const char* pass_name(Pass p) {
@@ -41,6 +42,7 @@ inline const char* pass_name(Pass p) {
     case Pass::Factor: return "factorisation of M";
     case Pass::Frames: return "its frames";
     case Pass::JacobianColumns: return "its joint's Jacobian columns";
+    case Pass::Constraints: return "constraints";
   }
   return "?";
 }

@@ -94,6 +94,12 @@ struct Workspace {
     Linv.resize(dtau_dq.size());
     column_Dinv.resize(static_cast<std::size_t>(model.nv));
     h.resize(static_cast<std::size_t>(model.nv));
+    const std::size_t nc = static_cast<std::size_t>(model.nc);
+    Jc.resize(nc * static_cast<std::size_t>(model.nv));
+    Wt.resize(Jc.size());
+    A.resize(nc * nc);
+    A_damped.resize(nc * nc);
+    for (std::vector<S>* x : {&A_Dinv, &gamma, &Jv, &perr, &rc, &lam_step}) x->resize(nc);
     // the rows of d tau that can be non-zero in column c: c's path to the root, then its
     // subtree; in d tau / dq none for a root joint's translations, which carry the whole robot
     // through uniform gravity and change no force in the bodies' frames (rnea_derivatives gives
@@ -187,6 +193,12 @@ struct Workspace {
   std::vector<S> column_Dinv, h;         // [nv] if nv <= max_matrix_nv
   std::vector<S> qdd;                    // [nv]
   std::vector<S> dtau_dq, dtau_dv;       // [nv * nv] if nv <= max_matrix_nv
+  // constrained.hpp, if nv <= max_matrix_nv: the constraints' Jacobian J and W^T = L^-T J^T
+  // (nc x nv), their operational space inverse inertia A and A + mu factorised (nc x nc), its
+  // 1 / pivots, Jdot v, J v, loops' position errors, the right side and a step of the solve
+  std::vector<S> Jc, Wt, A, A_damped;
+  std::vector<S> A_Dinv, gamma, Jv, perr, rc, lam_step;
+  S mu{};  // the damping of the last solve
   // kernels::neg_product's rows of d tau that can be non-zero, per column, of d tau / dq [0]
   // and of d tau / dv [1]
   std::vector<int> product_begin[2];     // [nv + 1] if nv <= max_matrix_nv
