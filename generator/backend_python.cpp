@@ -112,6 +112,13 @@ std::string python_attributes(const Model<double>& model) {
   for (const Frame<double>& f : model.frames) frames.push_back(f.name);
   if (!frames.empty())
     text += fmt::format("    m.attr(\"frame_names\") = {};\n", python_names(frames));
+  std::vector<std::string> constraints;
+  for (const Constraint<double>& c : model.constraints) constraints.push_back(c.name);
+  if (!constraints.empty())
+    text += fmt::format(
+        "    // the constraints (--contacts, loops): lambda's 3 entries per :3d, 6 per :6d\n"
+        "    m.attr(\"constraint_names\") = {};\n    m.attr(\"nc\") = {};\n",
+        python_names(constraints), model.nc);
   // the bodies' standard parameters (dyngen/regressor.hpp), (nbodies, 10): tau = Y pi + ...
   std::string pi;
   for (int i = 0; i < model.nbodies; ++i) {

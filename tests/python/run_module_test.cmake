@@ -2,8 +2,8 @@
 # builds it with its own CMakeLists.txt for PYTHON, runs test_module.py (in TESTS) with pytest on
 # its module and, if OPTIONS has --torch, test_torch.py on NAME_torch.py; given EXAMPLES (the
 # examples/ directory), runs python/rollouts.py on the module and, with --torch, the two
-# examples of torch/ (ur5's). SCRATCH is rewritten; OPTIMIZE, if set, replaces the package's
-# Release flags' -O3.
+# examples of torch/ (ur5's); given CONTACTS (--contacts), test_contacts.py. SCRATCH is
+# rewritten; OPTIMIZE, if set, replaces the package's Release flags' -O3.
 cmake_policy(SET CMP0057 NEW)
 file(REMOVE_RECURSE ${SCRATCH})
 string(TOUPPER ${NAME} upper)
@@ -12,6 +12,9 @@ set(binary ${SCRATCH}/build)
 foreach(step IN ITEMS generate configure build pytest example identification optimisation)
   if(step STREQUAL "generate")
     set(cmd ${DYNGEN} ${INPUT} -o ${source} --name ${NAME} --quiet --python ${OPTIONS})
+    if(CONTACTS)
+      list(APPEND cmd --contacts ${CONTACTS})
+    endif()
   elseif(step STREQUAL "configure")
     set(cmd ${CMAKE_COMMAND} -S ${source} -B ${binary} -D${upper}_BUILD_CHECK=OFF
             -DPython3_EXECUTABLE=${PYTHON})
@@ -26,8 +29,12 @@ foreach(step IN ITEMS generate configure build pytest example identification opt
     if("--torch" IN_LIST OPTIONS)
       list(APPEND tests ${TESTS}/test_torch.py)
     endif()
+    if(CONTACTS)
+      list(APPEND tests ${TESTS}/test_contacts.py)
+    endif()
     set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} DYNGEN_MODULE=${NAME}_dynamics
             DYNGEN=${DYNGEN} DYNGEN_ROBOT=${INPUT} "DYNGEN_ROBOT_OPTIONS=${model_options}"
+            DYNGEN_CONTACTS=${CONTACTS}
             MPLBACKEND=Agg ${PYTHON} -m pytest -q -p no:cacheprovider ${tests})
   elseif(step STREQUAL "example" AND EXAMPLES)
     set(cmd ${CMAKE_COMMAND} -E env PYTHONPATH=${binary} ${PYTHON} ${EXAMPLES}/python/rollouts.py
