@@ -272,6 +272,22 @@ std::string read_file(const std::string& path) {
 
 namespace {
 
+/// The frame of the link named (--frames, --contacts, a chain spec's loop); `where` starts the
+/// error that lists the links when there is none.
+const Frame<double>& link_frame(const Model<double>& model, const std::string& name,
+                                const std::string& where) {
+  const auto it = std::find_if(model.frames.begin(), model.frames.end(),
+                               [&](const Frame<double>& f) { return f.name == name; });
+  if (it == model.frames.end()) {
+    std::string links;
+    for (std::size_t k = 0; k < model.frames.size() && k < 40; ++k)
+      links += (k ? ", '" : "'") + model.frames[k].name + "'";
+    if (model.frames.size() > 40) links += fmt::format(" and {} more", model.frames.size() - 40);
+    throw InputError(fmt::format("{}: no link named '{}'; the links are {}", where, name, links));
+  }
+  return *it;
+}
+
 /// Keeps the frames of the links named (in that order), or without names those of
 /// default_frames_rule, in the model's order: the leaf links on a body without moving children.
 void select_frames(Model<double>& model, const ModelBuilder& builder,
@@ -287,38 +303,16 @@ void select_frames(Model<double>& model, const ModelBuilder& builder,
       if (f.body >= 0 && end_of_limb[f.body] && !parents.count(f.name)) kept.push_back(f);
   }
   for (const std::string& name : names) {
-    const auto it = std::find_if(model.frames.begin(), model.frames.end(),
-                                 [&](const Frame<double>& f) { return f.name == name; });
-    if (it == model.frames.end()) {
-      std::string links;
-      for (std::size_t k = 0; k < model.frames.size() && k < 40; ++k)
-        links += (k ? ", '" : "'") + model.frames[k].name + "'";
-      if (model.frames.size() > 40) links += fmt::format(" and {} more", model.frames.size() - 40);
-      throw InputError(fmt::format("{}: --frames: no link named '{}'; the links are {}", path,
-                                   name, links));
-    }
+    const Frame<double>& f = link_frame(model, name, path + ": --frames");
     if (std::none_of(kept.begin(), kept.end(),
-                     [&](const Frame<double>& f) { return f.name == name; }))
-      kept.push_back(*it);
+                     [&](const Frame<double>& k) { return k.name == name; }))
+      kept.push_back(f);
   }
   model.frames = kept;
 }
 
-/// The frame of the link named, as --contacts or a chain spec's loop names it, with the point
-/// at xyz in the link's frame as its origin.
-Frame<double> link_frame(const Model<double>& model, const std::string& name,
-                         const Vec3<double>& xyz, const std::string& where) {
-  const auto it = std::find_if(model.frames.begin(), model.frames.end(),
-                               [&](const Frame<double>& f) { return f.name == name; });
-  if (it == model.frames.end()) {
-    std::string links;
-    for (std::size_t k = 0; k < model.frames.size() && k < 40; ++k)
-      links += (k ? ", '" : "'") + model.frames[k].name + "'";
-    if (model.frames.size() > 40) links += fmt::format(" and {} more", model.frames.size() - 40);
-    throw InputError(fmt::format("{}: no link named '{}'; the links are {}", where, name, links));
-  }
-  Frame<double> f = *it;
-  // the point's offset, in the link's axes, moves the origin: X = xlt(xyz) X_link
+/// The frame moved to the point at xyz in its own axes: X = xlt(xyz) X_frame.
+Frame<double> at_point(Frame<double> f, const Vec3<double>& xyz) {
   f.placement.r = f.placement.r + mul_T(f.placement.E, xyz);
   return f;
 }
@@ -340,7 +334,7 @@ void add_constraints(Model<double>& model, const std::vector<RobotDescription::L
   std::vector<Constraint<double>> constraints;
   for (const std::string& text : options.contacts) {
     const auto [link, six_d] = parse_contact(text);
-    const Frame<double> f = link_frame(model, link, {}, fmt::format("--contacts {}", text));
+    const Frame<double>& f = link_frame(model, link, fmt::format("--contacts {}", text));
     if (f.body < 0)
       throw InputError(
           fmt::format("--contacts {}: link '{}' is welded to the fixed base, so a "
@@ -354,8 +348,8 @@ void add_constraints(Model<double>& model, const std::vector<RobotDescription::L
   }
   for (const RobotDescription::Loop& loop : loops) {
     const std::string where = fmt::format("{}: loop {}-{}", path, loop.link_a, loop.link_b);
-    const Frame<double> a = link_frame(model, loop.link_a, loop.xyz_a, where);
-    const Frame<double> b = link_frame(model, loop.link_b, loop.xyz_b, where);
+    const Frame<double> a = at_point(link_frame(model, loop.link_a, where), loop.xyz_a);
+    const Frame<double> b = at_point(link_frame(model, loop.link_b, where), loop.xyz_b);
     if (a.body == b.body)
       throw InputError(where +
                        ": both links are on one rigid body, so the loop constrains nothing");

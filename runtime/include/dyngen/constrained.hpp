@@ -98,19 +98,34 @@ void ltdl_finish_solve(int n, const int* parent, std::span<const S> L, std::span
 /// the diagonal, 1 / pivots in ws.A_Dinv).
 template <class S>
 void operational_space(const Model<S>& model, Workspace<S>& ws) {
-  TraceHook<S>::enter(-1, Pass::Constraints);
   const int n = model.nv, m = model.nc;
-  for (std::size_t e = 0; e < ws.Jc.size(); ++e) ws.Wt[e] = ws.Jc[e];
-  for (int r = 0; r < m; ++r)
-    ltdl_half_solve<S>(n, ws.column_parent.data(), ws.H, &ws.Wt[row_major(n, r, 0)]);
-  S trace{};
-  for (int r = 0; r < m; ++r)
-    for (int s = 0; s <= r; ++s) {
-      S sum{};
-      for (int k = 0; k < n; ++k)
-        sum = sum + ws.Wt[row_major(n, r, k)] * ws.column_Dinv[k] * ws.Wt[row_major(n, s, k)];
-      ws.A[row_major(m, r, s)] = ws.A[row_major(m, s, r)] = sum;
+  const auto entry = [&](int r, int s) {  // A_rs = sum over k of W_rk D_k^-1 W_sk
+    S sum{};
+    for (int k = 0; k < n; ++k)
+      sum = sum + ws.Wt[row_major(n, r, k)] * ws.column_Dinv[k] * ws.Wt[row_major(n, s, k)];
+    ws.A[row_major(m, r, s)] = ws.A[row_major(m, s, r)] = sum;
+  };
+  // each constraint's rows of W and its own block of A, at its link (a quadruped's feet do the
+  // same operations, which the code computes in vector lanes), then the blocks between them
+  int first = 0;
+  for (const Constraint<S>& c : model.constraints) {
+    TraceHook<S>::enter(c.body_a, Pass::Constraints);
+    const int end = first + constraint_rows(c);
+    for (int r = first; r < end; ++r) {
+      for (int k = 0; k < n; ++k) ws.Wt[row_major(n, r, k)] = ws.Jc[row_major(n, r, k)];
+      ltdl_half_solve<S>(n, ws.column_parent.data(), ws.H, &ws.Wt[row_major(n, r, 0)]);
+      for (int s = first; s <= r; ++s) entry(r, s);
     }
+    first = end;
+  }
+  TraceHook<S>::enter(-1, Pass::Constraints);
+  first = 0;
+  for (const Constraint<S>& c : model.constraints) {
+    for (int r = first; r < first + constraint_rows(c); ++r)
+      for (int s = 0; s < first; ++s) entry(r, s);
+    first += constraint_rows(c);
+  }
+  S trace{};
   for (int r = 0; r < m; ++r) trace = trace + ws.A[row_major(m, r, r)];
   const S mu = model.constraint_settings.damping * trace / S(m);
   // A + mu = L D L^T, column by column, keeping L_ij D_j below the diagonal: L_ij is that times
