@@ -128,7 +128,7 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
                           c.shared_sections, c.sections, c.shared_functions);
   }
   if (robot.snapped) text += fmt::format("\n{}", snap_text(*robot.snapped));
-  if (robot.model.nc > 0) text += "\n" + constraints_text(robot.model);
+  if (robot.model.nc > 0) text += fmt::format("\n{}", constraints_text(robot.model));
   return fmt::format("{}\n{}", text, conditioning);
 }
 

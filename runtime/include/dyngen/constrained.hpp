@@ -141,7 +141,6 @@ void operational_space(const Model<S>& model, Workspace<S>& ws) {
       ws.A_damped[row_major(m, i, j)] = x;
     }
   }
-  ws.mu = mu;
 }
 
 /// lam with A lam = r by the proximal iterations, after operational_space: lam_{k+1} = lam_k +

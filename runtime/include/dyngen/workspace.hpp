@@ -198,7 +198,6 @@ struct Workspace {
   // 1 / pivots, Jdot v, J v, loops' position errors, the right side and a step of the solve
   std::vector<S> Jc, Wt, A, A_damped;
   std::vector<S> A_Dinv, gamma, Jv, perr, rc, lam_step;
-  S mu{};  // the damping of the last solve
   // kernels::neg_product's rows of d tau that can be non-zero, per column, of d tau / dq [0]
   // and of d tau / dv [1]
   std::vector<int> product_begin[2];     // [nv + 1] if nv <= max_matrix_nv
