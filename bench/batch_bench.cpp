@@ -282,10 +282,7 @@ void check_and_add(Subject& s) {
 }
 
 std::string format(std::optional<double> x, const char* spec) {
-  if (!x) return "-";
-  char text[32];
-  std::snprintf(text, sizeof text, spec, *x);
-  return text;
+  return dyngen::bench::format(x, spec, "-");
 }
 
 /// Millions of states per second, to three digits.

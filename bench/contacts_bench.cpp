@@ -108,12 +108,6 @@ std::string benchmark_name(const Subject& s, Function f) {
   return std::string(s.package.name) + " (" + s.package.words + ")/" + function_names[f];
 }
 
-std::string format(double x, const char* spec) {
-  char text[32];
-  std::snprintf(text, sizeof text, spec, x);
-  return text;
-}
-
 /// The table of the run: ns per call and the ratios over ABA, in time and in operations.
 std::string table(const std::vector<std::unique_ptr<Subject>>& subjects,
                   const std::map<std::string, double>& ns) {
@@ -123,14 +117,21 @@ std::string table(const std::vector<std::unique_ptr<Subject>>& subjects,
         "| ops impulse |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& s : subjects) {
     double t[4];
-    for (int f = 0; f < 4; ++f) t[f] = ns.at(benchmark_name(*s, static_cast<Function>(f)));
+    bool measured = true;  // not filtered out (--benchmark_filter)
+    for (int f = 0; f < 4; ++f) {
+      const auto it = ns.find(benchmark_name(*s, static_cast<Function>(f)));
+      measured = measured && it != ns.end();
+      t[f] = measured ? it->second : 0;
+    }
+    if (!measured) continue;
     const long ops[3] = {operations(s->model(), "aba"), operations(s->model(), "contact_dynamics"),
                          operations(s->model(), "impulse_dynamics")};
     md << "| " << s->package.name << " | " << s->package.words << " | " << s->model().nv << " | "
-       << s->model().nc << " | " << format(t[Aba], "%.1f") << " | " << format(t[Contact], "%.1f")
-       << " | " << format(t[Impulse], "%.1f") << " | " << format(t[RuntimeContact], "%.1f") << " | "
-       << format(t[Contact] / t[Aba], "%.2f") << " | "
-       << format(static_cast<double>(ops[1]) / static_cast<double>(ops[0]), "%.2f") << " | "
+       << s->model().nc << " | " << format(t[Aba], "%.1f", "-") << " | "
+       << format(t[Contact], "%.1f", "-") << " | " << format(t[Impulse], "%.1f", "-") << " | "
+       << format(t[RuntimeContact], "%.1f", "-") << " | "
+       << format(t[Contact] / t[Aba], "%.2f", "-") << " | "
+       << format(static_cast<double>(ops[1]) / static_cast<double>(ops[0]), "%.2f", "-") << " | "
        << ops[0] << " | " << ops[1] << " | " << ops[2] << " |\n";
   }
   return md.str();

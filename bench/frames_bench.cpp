@@ -413,10 +413,7 @@ class KdlFrames {
 };
 
 std::string format(std::optional<double> x, const char* spec) {
-  if (!x) return "n/a";
-  char text[32];
-  std::snprintf(text, sizeof text, spec, *x);
-  return text;
+  return dyngen::bench::format(x, spec, "n/a");
 }
 
 /// The generated functions against the runtime at one state, and each peer's function against

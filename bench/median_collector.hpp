@@ -1,15 +1,24 @@
-// A Google Benchmark reporter that keeps each benchmark's median, shared by the benchmark
-// programs that print their own tables.
+// A Google Benchmark reporter that keeps each benchmark's median, and a table cell's number,
+// shared by the benchmark programs that print their own tables.
 #pragma once
 
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace dyngen::bench {
+
+/// x printed with printf's spec ("%.1f"), or `missing` for a value not measured.
+inline std::string format(std::optional<double> x, const char* spec, const char* missing) {
+  if (!x) return missing;
+  char text[32];
+  std::snprintf(text, sizeof text, spec, *x);
+  return text;
+}
 
 /// Keeps the median of each benchmark's repetitions (the only run without repetitions), in
 /// wall-clock or CPU time, and prints it as progress.
