@@ -26,6 +26,7 @@ std::string python_shape(const Extent& e, const std::string& ns) {
   if (e.size == Extent::Nv) dims.push_back(scope + "nv");
   if (e.size == Extent::NvNv) dims.insert(dims.end(), {scope + "nv", scope + "nv"});
   if (e.size == Extent::Nc) dims.push_back(scope + "nc");
+  if (e.size == Extent::NcNv) dims.insert(dims.end(), {scope + "nc", scope + "nv"});
   std::string text;
   for (const std::string& d : dims) text += (text.empty() ? "" : ", ") + d;
   return "{" + text + "}";

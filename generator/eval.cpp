@@ -20,6 +20,7 @@
 #include "dyngen/aba.hpp"
 #include "dyngen/aba_derivatives.hpp"
 #include "dyngen/constrained.hpp"
+#include "dyngen/contact_derivatives.hpp"
 #include "dyngen/crba.hpp"
 #include "dyngen/frames.hpp"
 #include "dyngen/minv.hpp"
@@ -241,8 +242,8 @@ struct Output {
 };
 
 /// Computes each state's results and writes them as nlohmann::json's dump(2) would print the
-/// whole tree, its keys in dump's order: M, Minv, Y, dqdd_dq, dqdd_dv, dtau_dq, dtau_dv, frames,
-/// impulse, lambda, qdd, tau, v_plus. The head is written with the first result, so that a bad
+/// whole tree, its keys in dump's order: M, Minv, Y, dlambda_dq, dlambda_dtau, dlambda_dv,
+/// dqdd_dq, dqdd_dtau, dqdd_dv, dtau_dq, dtau_dv, frames, impulse, lambda, qdd, tau, v_plus. The head is written with the first result, so that a bad
 /// first state leaves nothing written.
 class ResultWriter {
  public:
@@ -269,6 +270,8 @@ class ResultWriter {
   Workspace<double> ws_;
   std::vector<double> tau_, qdd_, M_, Minv_, dtau_dq_, dtau_dv_, dqdd_dq_, dqdd_dv_, Y_, R_, p_, J_,
       Jdot_v_, lambda_, v_plus_, impulse_;
+  // with --contacts: d qdd / d tau and d lambda / d(q, v, tau), nc x nv
+  std::vector<double> dqdd_dtau_, dlambda_dq_, dlambda_dv_, dlambda_dtau_;
   std::vector<std::string> frame_keys_;   // python_text of each frame's name, quoted
   std::vector<std::size_t> frame_order_;  // the frames in their keys' order
   json row_ = json::array();  // put_array's, kept for its capacity
@@ -280,10 +283,6 @@ ResultWriter::ResultWriter(const Model<double>& model, const std::string& name,
                            std::FILE* out, const EvalOptions& options)
     : model_(model), name_(name), out_(out), options_(options),
       n_(static_cast<std::size_t>(model.nv)), ws_(model) {
-  if (options.derivatives && model.nc > 0)
-    throw InputError(
-        "--derivatives with --contacts: the derivatives of contact_dynamics are not "
-        "in dyngen yet; leave out one of them");
   if (options.derivatives) {
     if (model.nv > Workspace<double>::max_matrix_nv)
       throw InputError(fmt::format("--derivatives: the robot has {} degrees of freedom, above the "
@@ -335,10 +334,18 @@ void ResultWriter::compute(const State& state) {
     dtau_dv_.assign(with_a ? nn : 0, 0.0);
     dqdd_dq_.assign(with_tau ? nn : 0, 0.0);
     dqdd_dv_.assign(with_tau ? nn : 0, 0.0);
+    const bool constrained = with_tau && model_.nc > 0;
+    const std::size_t nc_nv = constrained ? static_cast<std::size_t>(model_.nc) * n_ : 0;
+    dqdd_dtau_.assign(constrained ? nn : 0, 0.0);
+    for (std::vector<double>* d : {&dlambda_dq_, &dlambda_dv_, &dlambda_dtau_}) d->assign(nc_nv, 0.0);
     if (with_a)
       rnea_derivatives<double>(model_, ws_, state.x[Q], state.x[V], state.x[A], dtau_dq_,
                                dtau_dv_);
-    if (with_tau)
+    if (constrained)
+      contact_dynamics_derivatives<double>(model_, ws_, state.x[Q], state.x[V], state.x[Tau],
+                                           dqdd_dq_, dqdd_dv_, dqdd_dtau_, dlambda_dq_,
+                                           dlambda_dv_, dlambda_dtau_);
+    else if (with_tau)
       aba_derivatives<double>(model_, ws_, state.x[Q], state.x[V], state.x[Tau], dqdd_dq_,
                               dqdd_dv_, Minv_);
     // "Minv" is minv's with or without tau: aba_derivatives' own, from M's factors, can
@@ -385,17 +392,23 @@ void ResultWriter::write(const State& state, std::size_t s) {
   };
   std::vector<Output> matrices{matrix("\"M\"", M_)};
   if (options_.derivatives) matrices.push_back(matrix("\"Minv\"", Minv_));
+  if (!Y_.empty())
+    matrices.push_back({"\"Y\"", Y_.data(), Y_.size(),
+                        static_cast<std::size_t>(parameters_per_body * model_.nbodies)});
+  if (!dlambda_dq_.empty()) {
+    matrices.push_back(matrix("\"dlambda_dq\"", dlambda_dq_));
+    matrices.push_back(matrix("\"dlambda_dtau\"", dlambda_dtau_));
+    matrices.push_back(matrix("\"dlambda_dv\"", dlambda_dv_));
+  }
   if (options_.derivatives && state.has(Tau)) {
     matrices.push_back(matrix("\"dqdd_dq\"", dqdd_dq_));
+    if (!dqdd_dtau_.empty()) matrices.push_back(matrix("\"dqdd_dtau\"", dqdd_dtau_));
     matrices.push_back(matrix("\"dqdd_dv\"", dqdd_dv_));
   }
   if (options_.derivatives && state.has(A)) {
     matrices.push_back(matrix("\"dtau_dq\"", dtau_dq_));
     matrices.push_back(matrix("\"dtau_dv\"", dtau_dv_));
   }
-  if (!Y_.empty())
-    matrices.push_back({"\"Y\"", Y_.data(), Y_.size(),
-                        static_cast<std::size_t>(parameters_per_body * model_.nbodies)});
   std::vector<Output> vectors;
   const std::size_t nc = static_cast<std::size_t>(model_.nc);
   if (!impulse_.empty()) vectors.push_back({"\"impulse\"", impulse_.data(), nc, 0});

@@ -69,9 +69,11 @@ std::vector<Algorithm> with_constraints(std::vector<Algorithm> algorithms,
     return algorithms;
   }
   if (!listed.empty()) return algorithms;
+  // derivatives on request only, as without constraints
   std::vector<Algorithm> out;
   for (const Algorithm& a : algorithm_names())
-    if (needs(a) || std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end())
+    if ((needs(a) && !a.ends_with("_derivatives")) ||
+        std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end())
       out.push_back(a);
   return out;
 }
@@ -665,8 +667,9 @@ int eval_main(int argc, char** argv) {
       ->required();
   bool derivatives = false;
   app.add_flag("--derivatives", derivatives,
-               "add Minv, and the derivatives of ABA (dqdd_dq, dqdd_dv) where tau is given and of "
-               "RNEA (dtau_dq, dtau_dv) where a is given");
+               "add Minv, and the derivatives of ABA (dqdd_dq, dqdd_dv) where tau is given (with "
+               "--contacts those of contact_dynamics: also dqdd_dtau and dlambda_dq, dlambda_dv, "
+               "dlambda_dtau) and of RNEA (dtau_dq, dtau_dv) where a is given");
   bool regressor = false;
   app.add_flag("--regressor", regressor,
                "add Y, the inertial-parameter regressor (tau = Y pi + armature a), where a is "

@@ -17,6 +17,7 @@ std::string extent_text(const Extent& e, const std::string& nq, const std::strin
   if (e.size == Extent::Nv) factors.push_back(nv);
   if (e.size == Extent::NvNv) factors.insert(factors.end(), {nv, nv});
   if (e.size == Extent::Nc) factors.push_back(nc);
+  if (e.size == Extent::NcNv) factors.insert(factors.end(), {nc, nv});
   std::string text;
   for (const std::string& f : factors) text += (text.empty() ? "" : " * ") + f;
   return text;

@@ -527,13 +527,46 @@ TEST(Eval, ContactsPrintForcesThatSatisfyTheDefiningEquations) {
   EXPECT_LE((mat(r["M"]) * (v_plus - v) - J.transpose() * impulse).norm(),
             1e-12 * (J.transpose() * impulse).norm());
   EXPECT_GT(lambda.norm(), 1.0);
-  // the derivatives of contact_dynamics are not in dyngen yet: asking is an error, not ABA's
-  try {
-    eval_text(model, states, true);
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--derivatives with --contacts"), std::string::npos);
+}
+
+// With --derivatives, contact_dynamics' six derivatives; their v and tau columns against central
+// differences of eval's own qdd and lambda (h = 1e-6: truncation and rounding about 1e-9).
+TEST(Eval, ContactDerivativesAreThoseOfContactDynamics) {
+  LoadOptions options;
+  options.floating_base = true;
+  options.contacts = {"FL_FOOT", "HR_FOOT:6d"};
+  const dyngen::Model<double> model = load_robot(models + "/solo12.urdf", options).model;
+  const json states = json::array({state(model, 3, "tau")});
+  const std::string text = eval_text(model, states, true);
+  EXPECT_EQ(json::parse(text).dump(2) + "\n", text);  // the keys in dump's order
+  const json r = json::parse(text)["results"][0];
+  const auto rows = [](const json& x) {
+    Eigen::MatrixXd A(x.size(), x[0].size());
+    for (std::size_t i = 0; i < x.size(); ++i) A.row(i) = vec(x[i]).transpose();
+    return A;
+  };
+  const double h = 1e-6;
+  for (const char* wrt : {"v", "tau"}) {
+    const Eigen::MatrixXd dqdd = rows(r[std::string("dqdd_d") + wrt]);
+    const Eigen::MatrixXd dlambda = rows(r[std::string("dlambda_d") + wrt]);
+    ASSERT_EQ(dqdd.rows(), model.nv);
+    ASSERT_EQ(dlambda.rows(), model.nc);
+    ASSERT_EQ(dlambda.cols(), model.nv);
+    Eigen::MatrixXd fd_qdd(model.nv, model.nv), fd_lambda(model.nc, model.nv);
+    for (int c = 0; c < model.nv; ++c) {
+      json plus = states, minus = states;
+      plus[0][wrt][c] = states[0][wrt][c].get<double>() + h;
+      minus[0][wrt][c] = states[0][wrt][c].get<double>() - h;
+      const json p = evaluate(model, plus)["results"][0], m = evaluate(model, minus)["results"][0];
+      fd_qdd.col(c) = (vec(p["qdd"]) - vec(m["qdd"])) / (2 * h);
+      fd_lambda.col(c) = (vec(p["lambda"]) - vec(m["lambda"])) / (2 * h);
+    }
+    EXPECT_LE((dqdd - fd_qdd).cwiseAbs().maxCoeff(), 1e-6 * fd_qdd.cwiseAbs().maxCoeff()) << wrt;
+    EXPECT_LE((dlambda - fd_lambda).cwiseAbs().maxCoeff(), 1e-6 * fd_lambda.cwiseAbs().maxCoeff())
+        << wrt;
   }
+  EXPECT_EQ(rows(r["dqdd_dq"]).rows(), model.nv);
+  EXPECT_EQ(rows(r["dlambda_dq"]).rows(), model.nc);
 }
 
 using EvalCommand = dyngen::test::ScratchTest;

@@ -11,6 +11,7 @@
 #include "dyngen/aba.hpp"
 #include "dyngen/aba_derivatives.hpp"
 #include "dyngen/constrained.hpp"
+#include "dyngen/contact_derivatives.hpp"
 #include "dyngen/crba.hpp"
 #include "dyngen/frames.hpp"
 #include "dyngen/minv.hpp"
@@ -20,11 +21,11 @@
 
 namespace dyngen {
 
-/// The length of an array for a model: `count` times 1, nq, nv, nv * nv or nc (the constraints'
-/// rows), and times the number of frames for an array with an entry per frame (a frame's
+/// The length of an array for a model: `count` times 1, nq, nv, nv * nv, nc (the constraints'
+/// rows) or nc * nv, and times the number of frames for an array with an entry per frame (a frame's
 /// Jacobian is 6 x nv).
 struct Extent {
-  enum Size { One, Nq, Nv, NvNv, Nc };
+  enum Size { One, Nq, Nv, NvNv, Nc, NcNv };
   Size size = One;
   int count = 1;
   bool per_frame = false;
@@ -39,7 +40,8 @@ inline std::size_t extent_size(const Extent& e, int nq, int nv, int nframes, int
                            : e.size == Extent::Nq   ? static_cast<std::size_t>(nq)
                            : e.size == Extent::Nv   ? n
                            : e.size == Extent::NvNv ? n * n
-                                                    : static_cast<std::size_t>(nc);
+                           : e.size == Extent::Nc   ? static_cast<std::size_t>(nc)
+                                                    : static_cast<std::size_t>(nc) * n;
   return size * static_cast<std::size_t>(e.count) *
          (e.per_frame ? static_cast<std::size_t>(nframes) : 1) *
          (e.per_body ? static_cast<std::size_t>(nbodies) : 1);
@@ -52,7 +54,7 @@ std::size_t extent_size(const Extent& e, const Model<S>& model) {
 }
 
 inline constexpr Extent length_nq{Extent::Nq}, length_nv{Extent::Nv}, length_nv_nv{Extent::NvNv},
-    length_nc{Extent::Nc};
+    length_nc{Extent::Nc}, length_nc_nv{Extent::NcNv};
 
 /// An array of an algorithm's signature: its name (the same name means the same quantity in
 /// every algorithm), length and meaning, as the generated header documents it. Per frame f of
@@ -109,6 +111,16 @@ inline constexpr ArraySpec lambda_array{
     "lambda", length_nc,
     "constraint forces on frame A, per constraint: the force at its origin (3d), then the "
     "moment about it (6d), base axes, N and N m"};
+inline constexpr ArraySpec dqdd_dtau_array{
+    "dqdd_dtau", length_nv_nv, "d qdd / d tau, row-major: dqdd_dtau[i * nv + j] = d qdd_i / d tau_j"};
+inline constexpr ArraySpec dlambda_dq_array{
+    "dlambda_dq", length_nc_nv,
+    "d lambda / dq, nc x nv row-major: dlambda_dq[r * nv + j] = d lambda_r / dq_j (free joints: "
+    "tangent directions)"};
+inline constexpr ArraySpec dlambda_dv_array{"dlambda_dv", length_nc_nv,
+                                            "d lambda / dv, nc x nv row-major"};
+inline constexpr ArraySpec dlambda_dtau_array{"dlambda_dtau", length_nc_nv,
+                                              "d lambda / d tau, nc x nv row-major"};
 inline constexpr ArraySpec v_plus_array{"v_plus", length_nv, "joint velocities after the impact"};
 inline constexpr ArraySpec impulse_array{
     "impulse", length_nc, "constraint impulses on frame A, as lambda's forces, N s and N m s"};
@@ -283,6 +295,17 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        Growth::Dense, true,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          contact_dynamics<S>(m, ws, in[0], in[1], in[2], out[0], out[1]);
+       },
+       {}, Computes::Other, false, Needs::Constraints},
+      {"contact_dynamics_derivatives",
+       "Derivatives of contact_dynamics: d qdd and d lambda by dq, dv and d tau at (q, v, tau).",
+       {q_array, v_array, tau_array},
+       {dqdd_dq_array, dqdd_dv_array, dqdd_dtau_array, dlambda_dq_array, dlambda_dv_array,
+        dlambda_dtau_array},
+       Growth::Dense, true,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         contact_dynamics_derivatives<S>(m, ws, in[0], in[1], in[2], out[0], out[1], out[2],
+                                         out[3], out[4], out[5]);
        },
        {}, Computes::Other, false, Needs::Constraints},
       {"impulse_dynamics",

@@ -93,6 +93,27 @@ void ltdl_finish_solve(int n, const int* parent, std::span<const S> L, std::span
     for (int i = parent[k]; i >= 0; i = parent[i]) x[k] = x[k] - L[row_major(n, k, i)] * x[i];
 }
 
+/// mu = the damping times A's mean diagonal, after A is formed.
+template <class S>
+S proximal_damping(const Model<S>& model, const Workspace<S>& ws) {
+  const int m = model.nc;
+  S trace{};
+  for (int r = 0; r < m; ++r) trace = trace + ws.A[row_major(m, r, r)];
+  return model.constraint_settings.damping * trace / S(m);
+}
+
+/// x = (A + mu)^-1 x in place, by its L D L^T (operational_space): L y = x, y /= D, L^T x = y,
+/// with L_ij = A_damped_ij / D_j.
+template <class S>
+void damped_solve(int m, const Workspace<S>& ws, S* x) {
+  for (int i = 0; i < m; ++i)
+    for (int k = 0; k < i; ++k) x[i] = x[i] - ws.A_damped[row_major(m, i, k)] * ws.A_Dinv[k] * x[k];
+  for (int i = 0; i < m; ++i) x[i] = x[i] * ws.A_Dinv[i];
+  for (int i = m - 1; i >= 0; --i)
+    for (int k = i + 1; k < m; ++k)
+      x[i] = x[i] - ws.A_damped[row_major(m, k, i)] * ws.A_Dinv[i] * x[k];
+}
+
 /// After crba and factor_ltdl into ws.H: ws.Wt = L^-T J^T (nc rows of nv) and A = W D^-1 W^T
 /// into ws.A (nc x nc), with ws.A_damped = A + mu factorised as LDL^T (unit lower triangle below
 /// the diagonal, 1 / pivots in ws.A_Dinv).
@@ -125,9 +146,7 @@ void operational_space(const Model<S>& model, Workspace<S>& ws) {
       for (int s = 0; s < first; ++s) entry(r, s);
     first += constraint_rows(c);
   }
-  S trace{};
-  for (int r = 0; r < m; ++r) trace = trace + ws.A[row_major(m, r, r)];
-  const S mu = model.constraint_settings.damping * trace / S(m);
+  const S mu = proximal_damping(model, ws);
   // A + mu = L D L^T, column by column, keeping L_ij D_j below the diagonal: L_ij is that times
   // 1 / D_j, the product the solves take too
   const auto L = [&](int i, int j) { return ws.A_damped[row_major(m, i, j)] * ws.A_Dinv[j]; };
@@ -158,14 +177,7 @@ void proximal_solve(const Model<S>& model, Workspace<S>& ws, std::span<const S> 
       for (int j = 0; j < m && it > 0; ++j) res = res - ws.A[row_major(m, i, j)] * lam[j];
       x[i] = res;
     }
-    // (L D L^T) x = res: L y = res, y /= D, L^T x = y, with L_ij = A_damped_ij / D_j
-    for (int i = 0; i < m; ++i)
-      for (int k = 0; k < i; ++k)
-        x[i] = x[i] - ws.A_damped[row_major(m, i, k)] * ws.A_Dinv[k] * x[k];
-    for (int i = 0; i < m; ++i) x[i] = x[i] * ws.A_Dinv[i];
-    for (int i = m - 1; i >= 0; --i)
-      for (int k = i + 1; k < m; ++k)
-        x[i] = x[i] - ws.A_damped[row_major(m, k, i)] * ws.A_Dinv[i] * x[k];
+    damped_solve(m, ws, x);
     for (int i = 0; i < m; ++i) lam[i] = lam[i] + x[i];
   }
 }

@@ -125,23 +125,27 @@ void frame_jacobians(const Model<S>& model, Workspace<S>& ws, std::span<const S>
 
 namespace detail {
 
-/// The bodies' velocities ws.v and spatial accelerations ws.a at qdd = 0, in base coordinates,
-/// and their placements: a joint's motion vJ0 = X_i0^-1 vJ turns with its body, v_i = v_p + vJ0,
-/// a_i = a_p + v_p x vJ0 (RBDA eq. 5.7 with qdd = 0, as v_i x vJ0 = v_p x vJ0).
+/// The bodies' velocities ws.v and spatial accelerations ws.a at qdd (empty: 0), in base
+/// coordinates, and their placements: a joint's motion vJ0 = X_i0^-1 vJ turns with its body,
+/// v_i = v_p + vJ0, a_i = a_p + aJ0 + v_p x vJ0 (RBDA eq. 5.7, as v_i x vJ0 = v_p x vJ0).
 template <class S>
 void body_bias_accelerations(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
-                             std::span<const S> v) {
+                             std::span<const S> v, std::span<const S> qdd = {}) {
   for (int i = 0; i < model.nbodies; ++i) {
     TraceHook<S>::enter(i, Pass::Velocity);
     const int p = model.parent[i];
     place_body(model, ws, q, i);
-    const Motion<S> vJ0 = apply_motion_inv(ws.X0[i], joint_motion(model, i, &v[model.v_index[i]]));
+    const int k = model.v_index[i];
+    const Motion<S> vJ0 = apply_motion_inv(ws.X0[i], joint_motion(model, i, &v[k]));
+    const Motion<S> aJ0 =
+        qdd.empty() ? Motion<S>{} : apply_motion_inv(ws.X0[i], joint_motion(model, i, &qdd[k]));
     if (p < 0) {
       ws.v[i] = vJ0;
-      ws.a[i] = Motion<S>{};  // the base does not move
+      ws.a[i] = qdd.empty() ? Motion<S>{} : aJ0;  // the base does not move
     } else {
       ws.v[i] = ws.v[p] + vJ0;
-      ws.a[i] = ws.a[p] + cross_motion(ws.v[p], vJ0);
+      ws.a[i] = qdd.empty() ? ws.a[p] + cross_motion(ws.v[p], vJ0)
+                            : ws.a[p] + aJ0 + cross_motion(ws.v[p], vJ0);
     }
   }
 }

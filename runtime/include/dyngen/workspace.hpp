@@ -99,7 +99,10 @@ struct Workspace {
     Wt.resize(Jc.size());
     A.resize(nc * nc);
     A_damped.resize(nc * nc);
-    for (std::vector<S>* x : {&A_Dinv, &gamma, &Jv, &perr, &rc, &lam_step}) x->resize(nc);
+    for (std::vector<S>* x : {&A_Dinv, &gamma, &Jv, &perr, &rc, &lam_step, &lam}) x->resize(nc);
+    lam_map.resize(nc * nc);
+    A_inverse.resize(nc * nc);
+    constrained_qdd.resize(static_cast<std::size_t>(model.nv));
     // the rows of d tau that can be non-zero in column c: c's path to the root, then its
     // subtree; in d tau / dq none for a root joint's translations, which carry the whole robot
     // through uniform gravity and change no force in the bodies' frames (rnea_derivatives gives
@@ -198,6 +201,9 @@ struct Workspace {
   // 1 / pivots, Jdot v, J v, loops' position errors, the right side and a step of the solve
   std::vector<S> Jc, Wt, A, A_damped;
   std::vector<S> A_Dinv, gamma, Jv, perr, rc, lam_step;
+  // contact_derivatives.hpp: the solution qdd (nv) and lam (nc), the solve's map T from right
+  // side to lam and (A + mu)^-1 (nc x nc)
+  std::vector<S> constrained_qdd, lam, lam_map, A_inverse;
   // kernels::neg_product's rows of d tau that can be non-zero, per column, of d tau / dq [0]
   // and of d tau / dv [1]
   std::vector<int> product_begin[2];     // [nv + 1] if nv <= max_matrix_nv
