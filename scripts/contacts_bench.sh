@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds and runs dyngen_contacts_bench (bench/README.md, "Contacts"): contact_dynamics and
-# impulse_dynamics beside ABA, and writes bench/results/contacts.md. Extra arguments go to the
+# impulse_dynamics beside ABA and contact_dynamics_derivatives beside aba_derivatives, and writes
+# bench/results/contacts.md. Extra arguments go to the
 # bench, for instance --benchmark_filter=solo12.
 set -euo pipefail
 cd "$(dirname "$0")/.."

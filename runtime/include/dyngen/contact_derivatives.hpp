@@ -4,8 +4,9 @@
 //   M dqdd - J^T dlam = R1 = -d rnea(q, v, qdd) / dx + d(J^T lam) / dx
 //   J dqdd            = R2 = -d(J a + Jdot v + kd J v + kp e) / dx at a = qdd
 // (for tau: R1 = 1, R2 = 0), the same system as the dynamics' own, solved column by column by
-// the same Schur complement: y = L^-T R1, dlam = T (R2 - W D^-1 y), dqdd = L^-1 D^-1 (y + W^T
-// dlam), with T the map from the right side to lam of contact_dynamics' proximal iterations (A^-1
+// the same Schur complement (kernels::constrained_columns: compact loops where the unrolled
+// columns would fill the instruction cache): y = L^-T R1, dlam = T (R2 - W D^-1 y), dqdd =
+// L^-1 D^-1 (y + W^T dlam), with T the map from the right side to lam of contact_dynamics' proximal iterations (A^-1
 // to (mu / s)^3). d rnea / dx comes from rnea_derivatives; the constraints' terms from the
 // motion of each column s_k of the constraint's path in base coordinates (after Carpentier &
 // Mansard, RSS 2018, sec. III): moving q_k turns everything downstream of s_k's joint about s_k,
@@ -16,8 +17,10 @@
 #pragma once
 
 #include <span>
+#include <string_view>
 
 #include "dyngen/constrained.hpp"
+#include "dyngen/kernels.hpp"
 #include "dyngen/rnea_derivatives.hpp"
 
 namespace dyngen {
@@ -141,28 +144,26 @@ void proximal_map(const Model<S>& model, Workspace<S>& ws) {
     }
 }
 
-/// Column c of the system above, in place: on entry dqdd's column holds R1 and dlam's R2 (or,
-/// for d/dtau, R1 = e_c and R2 = 0: `unit`), on return the derivatives.
+/// The columns of the system above, in place: on entry dqdd holds R1 and dlam R2, on return the
+/// derivatives (kernels::constrained_columns).
 template <class S>
-void constrained_column(const Model<S>& model, Workspace<S>& ws, int c, bool unit,
-                        std::span<S> dqdd, std::span<S> dlam) {
+void constrained_columns(const Model<S>& model, Workspace<S>& ws, std::span<S> dqdd,
+                         std::span<S> dlam) {
+  TraceHook<S>::enter(-1, Pass::Product);
   const int n = model.nv, m = model.nc;
-  S* y = ws.qdd.data();
-  for (int k = 0; k < n; ++k) y[k] = unit ? S(k == c ? 1 : 0) : dqdd[row_major(n, k, c)];
-  ltdl_half_solve<S>(n, ws.column_parent.data(), ws.H, y);
-  for (int r = 0; r < m; ++r) {
-    S x = unit ? S(0) : dlam[row_major(n, r, c)];
-    for (int k = 0; k < n; ++k) x = x - ws.Wt[row_major(n, r, k)] * ws.column_Dinv[k] * y[k];
-    ws.rc[r] = x;
-  }
-  for (int r = 0; r < m; ++r) {
-    S x{};
-    for (int s = 0; s < m; ++s) x = x + ws.lam_map[row_major(m, r, s)] * ws.rc[s];
-    ws.lam_step[r] = x;
-    dlam[row_major(n, r, c)] = x;
-  }
-  constrained_solution<S>(model, ws, ws.qdd, ws.lam_step, ws.h);
-  for (int k = 0; k < n; ++k) dqdd[row_major(n, k, c)] = ws.h[k];
+  const int ints[] = {n, m};
+  const std::span<const int> tables[] = {ws.column_parent};
+  const std::string_view names[] = {"parent", "L", "Dinv", "Wt", "T", "R1", "R2",
+                                    "dqdd", "dlam", "r"};
+  const std::span<const S> inputs[] = {ws.H, ws.column_Dinv, ws.Wt, ws.lam_map, dqdd, dlam};
+  const std::span<S> outputs[] = {dqdd, dlam, ws.lam_columns};
+  run_kernel<S>({"constrained_columns", ints, tables, inputs, outputs, names},
+                [&](auto in, auto out) {
+                  kernels::constrained_columns(n, m, ws.column_parent.data(), in[0].data(),
+                                               in[1].data(), in[2].data(), in[3].data(),
+                                               in[4].data(), in[5].data(), out[0].data(),
+                                               out[1].data(), out[2].data());
+                });
 }
 
 }  // namespace detail
@@ -202,12 +203,13 @@ void contact_dynamics_derivatives(const Model<S>& model, Workspace<S>& ws, std::
                                      dlam_dq, dlam_dv);
     r0 += constraint_rows(k);
   }
-  TraceHook<S>::enter(-1, Pass::Constraints);
-  for (int c = 0; c < n; ++c) {
-    detail::constrained_column<S>(model, ws, c, false, dqdd_dq, dlam_dq);
-    detail::constrained_column<S>(model, ws, c, false, dqdd_dv, dlam_dv);
-    detail::constrained_column<S>(model, ws, c, true, dqdd_dtau, dlam_dtau);
-  }
+  // d tau: R1 = 1, R2 = 0
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) dqdd_dtau[row_major(n, i, j)] = S(i == j ? 1 : 0);
+  for (std::size_t e = 0; e < dlam_dtau.size(); ++e) dlam_dtau[e] = S(0);
+  detail::constrained_columns<S>(model, ws, dqdd_dq, dlam_dq);
+  detail::constrained_columns<S>(model, ws, dqdd_dv, dlam_dv);
+  detail::constrained_columns<S>(model, ws, dqdd_dtau, dlam_dtau);
 }
 
 }  // namespace dyngen

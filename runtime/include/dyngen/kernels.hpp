@@ -1,6 +1,6 @@
 // dyngen kernels: the loops of the algorithms whose work grows faster than the number of bodies
 // (the pairs of joints in the derivatives of inverse dynamics, the product M^-1 d tau of the
-// derivatives of forward dynamics). The runtime calls them (dyngen::run_kernel), and generated
+// derivatives of forward dynamics, the columns of the derivatives of contact dynamics). The runtime calls them (dyngen::run_kernel), and generated
 // code calls this same file, copied into each package as dyngen_kernels.hpp, so both compute the
 // same bits; the generator records a call instead of unrolling the loops, which keeps a big
 // robot's code small. Self-contained C++17: no includes, no allocation.
@@ -204,6 +204,43 @@ DYNGEN_KERNEL void neg_product(int n, const int* rows_begin, const int* rows, co
     for (int r0 = 0; r0 < n; r0 += block)
       product_block_of<block>(n - r0 < block ? n - r0 : block, n, c, r0, rows_begin, rows, A, B,
                               C);
+}
+
+/// The columns of contact_dynamics_derivatives' system (contact_derivatives.hpp), each through
+/// the Schur complement over M = L^T D L: for every column c of R1 (n x n) and R2 (m x n),
+/// row-major, y = L^-T R1_c, r = R2_c - W D^-1 y, dlam_c = T r and dqdd_c = L^-1 D^-1 (y + W^T
+/// dlam_c), with W^T (m x n) and T (m x m) row-major and L below the diagonal of M's factor (n x
+/// n, along the columns' parents). The innermost loops run along a row, over the columns, which
+/// are independent and contiguous. dqdd may be R1 and dlam R2 (in place); r is scratch (m x n).
+template <class S>
+DYNGEN_KERNEL void constrained_columns(int n, int m, const int* parent, const S* L, const S* Dinv,
+                                       const S* Wt, const S* T, const S* R1, const S* R2,
+                                       S* dqdd, S* dlam, S* r) {
+  S* y = dqdd;
+  for (int e = 0; e < n * n; ++e) y[e] = R1[e];
+  for (int k = n - 1; k >= 0; --k)  // y = L^-T y
+    for (int i = parent[k]; i >= 0; i = parent[i])
+      for (int c = 0; c < n; ++c) y[i * n + c] = y[i * n + c] - L[k * n + i] * y[k * n + c];
+  for (int s = 0; s < m; ++s) {  // r = R2 - W D^-1 y
+    for (int c = 0; c < n; ++c) r[s * n + c] = R2[s * n + c];
+    for (int k = 0; k < n; ++k) {
+      const S w = Wt[s * n + k] * Dinv[k];
+      for (int c = 0; c < n; ++c) r[s * n + c] = r[s * n + c] - w * y[k * n + c];
+    }
+  }
+  for (int s = 0; s < m; ++s) {  // dlam = T r
+    for (int c = 0; c < n; ++c) dlam[s * n + c] = T[s * m] * r[c];
+    for (int t = 1; t < m; ++t)
+      for (int c = 0; c < n; ++c) dlam[s * n + c] = dlam[s * n + c] + T[s * m + t] * r[t * n + c];
+  }
+  for (int k = 0; k < n; ++k) {  // y = D^-1 (y + W^T dlam)
+    for (int s = 0; s < m; ++s)
+      for (int c = 0; c < n; ++c) y[k * n + c] = y[k * n + c] + Wt[s * n + k] * dlam[s * n + c];
+    for (int c = 0; c < n; ++c) y[k * n + c] = y[k * n + c] * Dinv[k];
+  }
+  for (int k = 0; k < n; ++k)  // y = L^-1 y
+    for (int i = parent[k]; i >= 0; i = parent[i])
+      for (int c = 0; c < n; ++c) y[k * n + c] = y[k * n + c] - L[k * n + i] * y[i * n + c];
 }
 
 }  // namespace kernels

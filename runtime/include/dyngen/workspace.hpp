@@ -102,6 +102,7 @@ struct Workspace {
     for (std::vector<S>* x : {&A_Dinv, &gamma, &Jv, &perr, &rc, &lam_step, &lam}) x->resize(nc);
     lam_map.resize(nc * nc);
     A_inverse.resize(nc * nc);
+    lam_columns.resize(Jc.size());
     constrained_qdd.resize(static_cast<std::size_t>(model.nv));
     // the rows of d tau that can be non-zero in column c: c's path to the root, then its
     // subtree; in d tau / dq none for a root joint's translations, which carry the whole robot
@@ -202,8 +203,8 @@ struct Workspace {
   std::vector<S> Jc, Wt, A, A_damped;
   std::vector<S> A_Dinv, gamma, Jv, perr, rc, lam_step;
   // contact_derivatives.hpp: the solution qdd (nv) and lam (nc), the solve's map T from right
-  // side to lam and (A + mu)^-1 (nc x nc)
-  std::vector<S> constrained_qdd, lam, lam_map, A_inverse;
+  // side to lam and (A + mu)^-1 (nc x nc), and the columns' right sides (nc x nv)
+  std::vector<S> constrained_qdd, lam, lam_map, A_inverse, lam_columns;
   // kernels::neg_product's rows of d tau that can be non-zero, per column, of d tau / dq [0]
   // and of d tau / dv [1]
   std::vector<int> product_begin[2];     // [nv + 1] if nv <= max_matrix_nv
