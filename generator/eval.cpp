@@ -243,8 +243,8 @@ struct Output {
 
 /// Computes each state's results and writes them as nlohmann::json's dump(2) would print the
 /// whole tree, its keys in dump's order: M, Minv, Y, dlambda_dq, dlambda_dtau, dlambda_dv,
-/// dqdd_dq, dqdd_dtau, dqdd_dv, dtau_dq, dtau_dv, frames, impulse, lambda, qdd, tau, v_plus. The head is written with the first result, so that a bad
-/// first state leaves nothing written.
+/// dqdd_dq, dqdd_dtau, dqdd_dv, dtau_dq, dtau_dv, frames, impulse, lambda, qdd, tau, v_plus. The
+/// head is written with the first result, so that a bad first state leaves nothing written.
 class ResultWriter {
  public:
   ResultWriter(const Model<double>& model, const std::string& name, std::FILE* out,
@@ -337,7 +337,8 @@ void ResultWriter::compute(const State& state) {
     const bool constrained = with_tau && model_.nc > 0;
     const std::size_t nc_nv = constrained ? static_cast<std::size_t>(model_.nc) * n_ : 0;
     dqdd_dtau_.assign(constrained ? nn : 0, 0.0);
-    for (std::vector<double>* d : {&dlambda_dq_, &dlambda_dv_, &dlambda_dtau_}) d->assign(nc_nv, 0.0);
+    for (std::vector<double>* d : {&dlambda_dq_, &dlambda_dv_, &dlambda_dtau_})
+      d->assign(nc_nv, 0.0);
     if (with_a)
       rnea_derivatives<double>(model_, ws_, state.x[Q], state.x[V], state.x[A], dtau_dq_,
                                dtau_dv_);

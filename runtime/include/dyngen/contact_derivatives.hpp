@@ -6,10 +6,11 @@
 // (for tau: R1 = 1, R2 = 0), the same system as the dynamics' own, solved column by column by
 // the same Schur complement (kernels::constrained_columns: compact loops where the unrolled
 // columns would fill the instruction cache): y = L^-T R1, dlam = T (R2 - W D^-1 y), dqdd =
-// L^-1 D^-1 (y + W^T dlam), with T the map from the right side to lam of contact_dynamics' proximal iterations (A^-1
-// to (mu / s)^3). d rnea / dx comes from rnea_derivatives; the constraints' terms from the
-// motion of each column s_k of the constraint's path in base coordinates (after Carpentier &
-// Mansard, RSS 2018, sec. III): moving q_k turns everything downstream of s_k's joint about s_k,
+// L^-1 D^-1 (y + W^T dlam), with T the map from the right side to lam of contact_dynamics'
+// proximal iterations (A^-1 to (mu / s)^3). d rnea / dx comes from rnea_derivatives; the
+// constraints' terms from the motion of each column s_k of the constraint's path in base
+// coordinates (after Carpentier & Mansard, RSS 2018, sec. III): moving q_k turns everything
+// downstream of s_k's joint about s_k,
 //   dv_b = s_k x (v_b - v_p),  da_b = s_k x (a_b - a_p) - (s_k x v_p) x (v_b - v_p),
 //   ds_j = s_k x s_j,  dp = s_k.lin + s_k.ang x p,
 // and v_k adds dv_b = s_k, da_b = v_k' x s_k + s_k x (v_b - v_p) (p: the joint's parent body,

@@ -1,9 +1,10 @@
 // dyngen kernels: the loops of the algorithms whose work grows faster than the number of bodies
 // (the pairs of joints in the derivatives of inverse dynamics, the product M^-1 d tau of the
-// derivatives of forward dynamics, the columns of the derivatives of contact dynamics). The runtime calls them (dyngen::run_kernel), and generated
-// code calls this same file, copied into each package as dyngen_kernels.hpp, so both compute the
-// same bits; the generator records a call instead of unrolling the loops, which keeps a big
-// robot's code small. Self-contained C++17: no includes, no allocation.
+// derivatives of forward dynamics, the columns of the derivatives of contact dynamics). The
+// runtime calls them (dyngen::run_kernel), and generated code calls this same file, copied into
+// each package as dyngen_kernels.hpp, so both compute the same bits; the generator records a
+// call instead of unrolling the loops, which keeps a big robot's code small. Self-contained
+// C++17: no includes, no allocation.
 #pragma once
 
 // Generated code calls the kernels with constant tables: a compiler that specialised a kernel
