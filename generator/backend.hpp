@@ -53,6 +53,13 @@ struct PackageSummary {
   std::string code_banner;  // the banner as // comments
   bool calls_kernels;       // some function calls dyngen_kernels.hpp
   std::string hash_banner;  // as # comments (CMake, Python, TOML)
+  bool uses_lie = false;    // some function calls dyngen_lie.h (integrate, difference)
+
+  /// The #include lines of the support headers the functions call beyond dyngen_sincos.h.
+  std::string support_includes() const {
+    return std::string(calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : "") +
+           (uses_lie ? "#include \"dyngen_lie.h\"\n" : "");
+  }
 };
 
 class Backend {

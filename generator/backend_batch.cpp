@@ -64,6 +64,18 @@ class BatchBackend final : public Backend, public Dialect {
   std::string trig_value(const char* function, int index) const override {
     return fmt::format("{}_q{}", function, index);
   }
+  /// Lane by lane: "lane{f(x[0]), f(x[1])}" (a function of vectors would pass them in
+  /// registers that differ with the instruction set, which GCC warns of).
+  std::string function_call(const std::string& function,
+                            const std::vector<std::string>& arguments) const override {
+    std::string out = "lane{";
+    for (int l = 0; l < lanes_; ++l) {
+      std::string items;
+      for (const std::string& a : arguments) items += fmt::format("{}{}[{}]", items.empty() ? "" : ", ", a, l);
+      out += fmt::format("{}{}({})", l ? ", " : "", function, items);
+    }
+    return out + "}";
+  }
   /// A constant fills every lane.
   std::string element(const std::string& constant) const override {
     std::string copies = constant;
@@ -196,7 +208,7 @@ void BatchBackend::add_files(std::vector<GeneratedFile>& files, const PackageCon
             {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
             {"declarations", declarations_.substr(0, declarations_.size() - 1)}});
   cpp.insert({{"joint_trig", emit_joint_trig(p.model, p.single, *this)},
-              {"kernels_include", summary.calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
+              {"support_includes", summary.support_includes()},
               {"definitions", definitions_}});
   files.push_back({p.ns + "_batch.hpp", fill("batch.hpp.in", h)});
   files.push_back({p.ns + "_batch.cpp", fill("batch.cpp.in", cpp)});

@@ -64,6 +64,7 @@ class CBackend final : public LanguageBackend {
                                                               body_names_definition(p) +
                                                               constraint_names_definition(p.model)},
                                           {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
+                                          {"support_includes", summary.support_includes()},
                                           {"definitions", definitions_}})});
   }
 

@@ -28,8 +28,7 @@ class CppBackend final : public LanguageBackend {
                          {"namespace", p.ns},
                          {"scalar", p.scalar},
                          {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
-                         {"kernels_include",
-                          summary.calls_kernels ? "#include \"dyngen_kernels.hpp\"\n" : ""},
+                         {"support_includes", summary.support_includes()},
                          {"definitions", definitions_}})});
   }
 

@@ -34,8 +34,8 @@ std::string wrapped_call(const std::string& function, const std::vector<std::str
 }
 
 std::string to_string(const OpCounts& c) {
-  return fmt::format("add {}, mul {}, div {}, neg {}, sin {}, cos {}", c.add, c.mul, c.div, c.neg,
-                     c.sin, c.cos);
+  return fmt::format("add {}, mul {}, div {}, neg {}, sin {}, cos {}{}", c.add, c.mul, c.div, c.neg,
+                     c.sin, c.cos, c.fn > 0 ? fmt::format(", fn {}", c.fn) : "");
 }
 
 namespace {
@@ -49,6 +49,7 @@ void count(OpCounts& c, Op op, long times = 1) {
     case Op::Neg: c.neg += times; break;
     case Op::Sin: c.sin += times; break;
     case Op::Cos: c.cos += times; break;
+    case Op::Fn: c.fn += times; break;
     case Op::Const:
     case Op::Input:
     case Op::Call:
@@ -69,6 +70,7 @@ void count_node(OpCounts& c, const Program<T>& program, const Node<T>& n) {
   if (n.op != Op::Call) return;
   const OpCounts k = count_ops_of(program.graph.calls[n.a]);
   c.add += k.add, c.mul += k.mul, c.div += k.div, c.neg += k.neg, c.sin += k.sin, c.cos += k.cos;
+  c.fn += k.fn;
 }
 
 }  // namespace
@@ -317,6 +319,13 @@ std::string apply(Op op, const std::string& a, const std::string& b) {
 template <class T>
 template <class Arg>
 std::string CodePrinter<T>::expression(const Node<T>& n, Arg&& arg) const {
+  if (n.op == Op::Fn) {
+    const std::string name = std::string(info(static_cast<Function>(n.input)).name) +
+                             (std::is_same_v<T, float> ? "f" : "");
+    std::vector<std::string> arguments{arg(n.a)};
+    if (n.b >= 0) arguments.push_back(arg(n.b));
+    return dialect_.function_call(name, arguments);
+  }
   return apply(n.op, arg(n.a), n.b >= 0 ? arg(n.b) : std::string());
 }
 

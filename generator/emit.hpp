@@ -17,13 +17,13 @@
 
 namespace dyngen::gen {
 
-/// Operations by kind.
+/// Operations by kind; fn: calls of lie.h's functions.
 struct OpCounts {
-  long add = 0, mul = 0, div = 0, neg = 0, sin = 0, cos = 0;
-  long total() const { return add + mul + div + neg + sin + cos; }
+  long add = 0, mul = 0, div = 0, neg = 0, sin = 0, cos = 0, fn = 0;
+  long total() const { return add + mul + div + neg + sin + cos + fn; }
 };
 
-/// "add 12, mul 30, div 0, neg 2, sin 1, cos 1"
+/// "add 12, mul 30, div 0, neg 2, sin 1, cos 1", and ", fn 3" where there are calls of lie.h
 std::string to_string(const OpCounts& c);
 
 /// Counts the operations that reach an output (all of them for an unsimplified graph, whose
@@ -133,6 +133,11 @@ class Dialect {
   }
   /// sin or cos (function) of q[index], read from the trig.
   virtual std::string trig_value(const char* function, int index) const;
+  /// The call of a function of lie.h (its name for the scalar) on computed values: "f(x)".
+  virtual std::string function_call(const std::string& function,
+                                    const std::vector<std::string>& arguments) const {
+    return function + "(" + arguments[0] + (arguments.size() > 1 ? ", " + arguments[1] : "") + ")";
+  }
   /// A constant as an element of an array of computed values.
   virtual std::string element(const std::string& constant) const { return constant; }
   /// The statement that stores value into entry k of output array.

@@ -121,7 +121,8 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
                         to_string(c.generated), to_string(c.runtime));
     if (options.structure == Structure::Lanes || c.lane_blocks > 0)
       text += fmt::format("\n    {} of {} operations in {} blocks of vector lanes",
-                          c.lane_operations, c.generated.total() - c.generated.sin - c.generated.cos,
+                          c.lane_operations,
+                          c.generated.total() - c.generated.sin - c.generated.cos - c.generated.fn,
                           c.lane_blocks);
     else if (options.structure != Structure::Unrolled)
       text += fmt::format("\n    {} of {} link sections in {} shared functions",
@@ -283,6 +284,7 @@ std::string overflow_words(const Program<T>& program, const Model<double>& model
   const char* what = n.op == Op::Mul      ? "a product"
                      : n.op == Op::Div    ? "a quotient"
                      : n.op == Op::Result ? "a kernel's result"
+                     : n.op == Op::Fn     ? "a rotation's coefficient"
                                           : "a sum";
   return fmt::format("{} {} {}", what, node_place(model, n.body, n.pass),
                      std::isfinite(r.overflow_value)
@@ -393,6 +395,7 @@ struct Package {
   const Dialect& dialect;  // the language's
   std::string cases;       // the check's, function by function and backend by backend
   bool calls_kernels = false;
+  bool uses_lie = false;  // some function calls dyngen_lie.h
 };
 
 /// Algorithm a's program given to every backend, and its counts for the banner.
@@ -401,6 +404,7 @@ FunctionCounts add_function(Package& package, const PackageContext& p, const Alg
                             const Program<T>& program, const OpCounts& runtime) {
   const OpCounts generated = count_ops(program);
   package.calls_kernels = package.calls_kernels || !program.graph.calls.empty();
+  package.uses_lie = package.uses_lie || generated.fn > 0;
   const EmittedCode code = emit_code(program, p.model, p.options.structure, package.dialect);
   const auto print = [&](const Dialect& d, bool vector_kernels) {
     if (vector_kernels || std::none_of(program.graph.calls.begin(), program.graph.calls.end(),
@@ -459,6 +463,13 @@ void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
                                                               {"cases", package.cases}})});
 }
 
+/// What CMakeLists.txt adds for dyngen_lie.h: the C library's sqrt and atan2.
+constexpr const char* lie_libraries =
+    "# integrate and difference call sqrt and atan2 (dyngen_lie.h), which are in libm on Unix\n"
+    "if(UNIX)\n"
+    "  target_link_libraries({}_dynamics PUBLIC m)\n"
+    "endif()\n";
+
 /// The package's CMakeLists.txt: the library from the backends' sources, their targets and the
 /// check.
 GeneratedFile cmake_file(const PackageContext& p, const Package& package,
@@ -466,6 +477,7 @@ GeneratedFile cmake_file(const PackageContext& p, const Package& package,
   std::map<std::string, std::string> values{{"banner", commented(banner, "#")},
                                             {"name", p.ns},
                                             {"NAME", upper(p.ns)},
+                                            {"libraries", package.uses_lie ? fmt::format(lie_libraries, p.ns) : ""},
                                             {"sources", ""},
                                             {"targets", ""}};
   for (const std::unique_ptr<Backend>& backend : package.backends)
@@ -480,13 +492,14 @@ std::vector<GeneratedFile> package_files(const PackageContext& p, const Package&
                                          const std::string& banner) {
   std::vector<GeneratedFile> files;
   const PackageSummary summary{counts, commented(banner, "//"), package.calls_kernels,
-                               commented(banner, "#")};
+                               commented(banner, "#"), package.uses_lie};
   for (const std::unique_ptr<Backend>& backend : package.backends)
     backend->add_files(files, p, summary);
   // the runtime's own header, verbatim: both sides compute sin and cos with the same code
   files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
   if (package.calls_kernels)
     files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
+  if (package.uses_lie) files.push_back({"dyngen_lie.h", std::string(template_text("lie.h"))});
   add_check_files<T>(files, p, package, summary.code_banner);
   files.push_back(cmake_file(p, package, banner));
   return files;

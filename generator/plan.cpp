@@ -49,6 +49,7 @@ std::vector<Section> sections_of(const Program<T>& program, const std::vector<bo
       const Node<T>& n = nodes[id];
       s.shape += fmt::format("{}", static_cast<int>(n.op));
       if (n.op == Op::Call) s.shape += fmt::format(" call{}", n.a);  // never shared
+      if (n.op == Op::Fn) s.shape += fmt::format(" fn{}", n.input);
       program.graph.for_each_operand(id, [&](int x) {
         if (nodes[x].op == Op::Const) {
           const auto [it, added] = constant_slot.emplace(x, static_cast<int>(s.constants.size()));
@@ -106,7 +107,8 @@ std::vector<LaneBlock> plan_lane_blocks(const Program<T>& program, const Model<d
     std::string shape;
     bool calls = false;
     for (const int id : section.ops) {
-      calls = calls || nodes[id].op == Op::Call;
+      // vector statements have neither kernel calls nor lie.h's functions
+      calls = calls || nodes[id].op == Op::Call || nodes[id].op == Op::Fn;
       shape += fmt::format("{}", static_cast<int>(nodes[id].op));
       program.graph.for_each_operand(id, [&](int x) {
         shape += section_of[x] == static_cast<int>(s) ? fmt::format(" t{}", local[x]) : " o";

@@ -22,20 +22,24 @@ std::map<std::string, std::vector<T>> sample_state(const Model<double>& model, b
   numerics::Random rng(0x72616e6765 + static_cast<std::uint64_t>(2 * s + extreme));
   const double q_range = extreme ? 1e6 : 3.2, v_range = extreme ? 1e3 : 10,
                x_range = extreme ? 1e4 : 100;
-  std::vector<double> q = rng.vector(model.nq, -q_range, q_range);
-  for (int i = 0; i < model.nbodies; ++i)
-    if (const int o = quaternion_offset(model.joint_type[i]); o >= 0) {
-      const std::vector<double> w = numerics::random_unit_quaternion(rng);
-      std::copy(w.begin(), w.end(), q.begin() + model.q_index[i] + o);
-    }
+  const auto configuration = [&] {
+    std::vector<double> q = rng.vector(model.nq, -q_range, q_range);
+    for (int i = 0; i < model.nbodies; ++i)
+      if (const int o = quaternion_offset(model.joint_type[i]); o >= 0) {
+        const std::vector<double> w = numerics::random_unit_quaternion(rng);
+        std::copy(w.begin(), w.end(), q.begin() + model.q_index[i] + o);
+      }
+    return q;
+  };
   std::map<std::string, std::vector<T>> state;
   auto set = [&](const char* name, const std::vector<double>& x) {
     for (const double e : x) state[name].push_back(static_cast<T>(e));
   };
-  set("q", q);
+  set("q", configuration());
   set("v", rng.vector(model.nv, -v_range, v_range));
   set("a", rng.vector(model.nv, -x_range, x_range));
   set("tau", rng.vector(model.nv, -x_range, x_range));
+  set("q_target", configuration());
   return state;
 }
 
@@ -158,6 +162,11 @@ RangeEstimate estimate_range(const Program<T>& program, const Model<double>& mod
           T sin_a, cos_a;
           sincos((*a)[s], sin_a, cos_a);  // the runtime's, as the generated code calls it
           return node.op == Op::Sin ? sin_a : cos_a;
+        });
+        break;
+      case Op::Fn:
+        each([&](int s) {
+          return call_function(static_cast<Function>(node.input), (*a)[s], b ? (*b)[s] : T{});
         });
         break;
       case Op::Call: break;

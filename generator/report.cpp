@@ -86,7 +86,7 @@ numerics::Conditioning write_variant(const Robot& robot, const ReportOptions& op
   std::vector<GeneratedFile> files;
   for (const GeneratedFile& f : generated.files)
     if (f.name == name + "_dynamics.hpp" || f.name == name + "_dynamics.cpp" ||
-        f.name == "dyngen_sincos.h" || f.name == "dyngen_kernels.hpp" ||
+        f.name == "dyngen_sincos.h" || f.name == "dyngen_kernels.hpp" || f.name == "dyngen_lie.h" ||
         (with_model && f.name == name + "_model.hpp"))
       files.push_back(f);
   write_package(dir.string(), files);

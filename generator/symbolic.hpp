@@ -17,15 +17,47 @@
 #include <unordered_map>
 #include <vector>
 
+#include "dyngen/lie.hpp"
 #include "dyngen/sincos.hpp"
 #include "dyngen/trace_hook.hpp"
 
 namespace dyngen::gen {
 
 // Call: a kernel call, a = its index in Graph::calls; Result: an entry of its outputs, a = the
-// Call node, input = the entry's index in the call's outputs laid end to end.
-enum class Op : std::uint8_t { Const, Input, Neg, Add, Sub, Mul, Div, Sin, Cos, Call, Result };
-inline constexpr std::size_t op_kinds = 11;
+// Call node, input = the entry's index in the call's outputs laid end to end. Fn: a function of
+// lie.h of a (and b), input = its Function.
+enum class Op : std::uint8_t { Const, Input, Neg, Add, Sub, Mul, Div, Sin, Cos, Call, Result, Fn };
+inline constexpr std::size_t op_kinds = 12;
+
+/// The functions of lie.h (the exponential's and logarithm's coefficients) that Op::Fn calls.
+enum class Function : std::uint8_t { HalfCos, HalfSinc, ExpC, ExpD, ExpE, LogAlpha, LogFactor };
+
+/// A Function's name in lie.h (its float form adds "f") and its number of arguments.
+struct FunctionInfo {
+  const char* name;
+  int arity;
+};
+
+inline constexpr FunctionInfo function_info[] = {
+    {"dyngen_half_cos", 1}, {"dyngen_half_sinc", 1}, {"dyngen_exp_c", 1},     {"dyngen_exp_d", 1},
+    {"dyngen_exp_e", 1},    {"dyngen_log_alpha", 1}, {"dyngen_log_factor", 2}};
+
+inline const FunctionInfo& info(Function f) { return function_info[static_cast<int>(f)]; }
+
+/// f at x (and y) in T, as the runtime and the generated code compute it.
+template <class T>
+T call_function(Function f, T x, T y) {
+  switch (f) {
+    case Function::HalfCos: return dyngen::half_cos(x);
+    case Function::HalfSinc: return dyngen::half_sinc(x);
+    case Function::ExpC: return dyngen::exp_c(x);
+    case Function::ExpD: return dyngen::exp_d(x);
+    case Function::ExpE: return dyngen::exp_e(x);
+    case Function::LogAlpha: return dyngen::log_alpha(x);
+    case Function::LogFactor: return dyngen::log_factor(x, y);
+  }
+  throw std::logic_error("unknown function");
+}
 
 template <class T>
 struct Node {
@@ -83,6 +115,8 @@ class Graph {
 
   int unary(Op op, int x);
   int binary(Op op, int x, int y);
+  /// f(x) or f(x, y) (y >= 0), folded when its arguments are constants.
+  int function(Function f, int x, int y = -1);
 
   bool is_const(int id) const { return nodes[id].op == Op::Const; }
   bool is_const(int id, T v) const { return is_const(id) && nodes[id].value == v; }
@@ -240,6 +274,15 @@ int Graph<T>::binary(Op op, int x, int y) {
 }
 
 template <class T>
+int Graph<T>::function(Function f, int x, int y) {
+  if (simplify_ && is_const(x) && (y < 0 || is_const(y)))
+    return constant(call_function(f, nodes[x].value, y < 0 ? T{} : nodes[y].value));
+  Node<T> n{Op::Fn, x, y};
+  n.input = static_cast<int>(f);
+  return intern(n, Key{Op::Fn, x, y, static_cast<std::uint64_t>(f)});
+}
+
+template <class T>
 inline thread_local Graph<T>* active_graph = nullptr;
 
 /// Makes a graph the one Sym<T> arithmetic records into, for the scope's lifetime.
@@ -282,6 +325,13 @@ template <class T> Sym<T> operator/(Sym<T> x, Sym<T> y) { return Sym<T>::node(gr
 template <class T> Sym<T> operator-(Sym<T> x) { return Sym<T>::node(graph<T>().unary(Op::Neg, x.id)); }
 template <class T> Sym<T> sin(Sym<T> x) { return Sym<T>::node(graph<T>().unary(Op::Sin, x.id)); }
 template <class T> Sym<T> cos(Sym<T> x) { return Sym<T>::node(graph<T>().unary(Op::Cos, x.id)); }
+template <class T> Sym<T> half_cos(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::HalfCos, x.id)); }
+template <class T> Sym<T> half_sinc(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::HalfSinc, x.id)); }
+template <class T> Sym<T> exp_c(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::ExpC, x.id)); }
+template <class T> Sym<T> exp_d(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::ExpD, x.id)); }
+template <class T> Sym<T> exp_e(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::ExpE, x.id)); }
+template <class T> Sym<T> log_alpha(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::LogAlpha, x.id)); }
+template <class T> Sym<T> log_factor(Sym<T> s2, Sym<T> c) { return Sym<T>::node(graph<T>().function(Function::LogFactor, s2.id, c.id)); }
 
 template <class T>
 template <class Run, class Call>

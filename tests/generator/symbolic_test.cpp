@@ -106,6 +106,9 @@ std::vector<T> evaluate(const Graph<T>& g, const std::vector<T>& inputs) {
       case Op::Div: v[id] = v[n.a] / v[n.b]; break;
       case Op::Sin: v[id] = sin_of(v[n.a]); break;
       case Op::Cos: v[id] = cos_of(v[n.a]); break;
+      case Op::Fn:
+        v[id] = call_function(static_cast<Function>(n.input), v[n.a], n.b >= 0 ? v[n.b] : T{});
+        break;
     }
   }
   return v;
@@ -401,8 +404,8 @@ struct TraceCase {
   bool single;  // float instead of double
 
   std::string name() const {
-    return robot.substr(0, robot.find('.')) + "_" + algorithm +
-           (single ? "_float" : "_double");
+    const std::string file = robot.substr(robot.find_last_of('/') + 1);
+    return file.substr(0, file.find('.')) + "_" + algorithm + (single ? "_float" : "_double");
   }
 };
 
@@ -420,7 +423,10 @@ void expect_traces_agree(const Model<double>& model, Algorithm algorithm,
     ASSERT_EQ(simplified.graph.inputs[k].array, full.graph.inputs[k].array);
     ASSERT_EQ(simplified.graph.inputs[k].index, full.graph.inputs[k].index);
   }
-  EXPECT_LT(count_ops(simplified).total(), count_ops(full, false).total());
+  // simplifying removes operations, but from a program of one per output (integrate on an arm)
+  const long full_ops = count_ops(full, false).total();
+  if (full_ops > static_cast<long>(full.stored.size()))
+    EXPECT_LT(count_ops(simplified).total(), full_ops);
   std::mt19937_64 rng(42);
   std::vector<T> inputs(full.graph.inputs.size());
   for (int sample = 0; sample < 50; ++sample) {
@@ -432,7 +438,9 @@ void expect_traces_agree(const Model<double>& model, Algorithm algorithm,
     ASSERT_EQ(full.stored.size(), simplified.stored.size());
     for (std::size_t k = 0; k < full.stored.size(); ++k) {
       const T x = a[full.stored[k]], y = b[simplified.stored[k]];
-      ASSERT_TRUE(same_bits(x, y)) << "output entry " << k << " at sample " << sample
+      // the rewrites are exact for finite values: where a value is not (sample 0's all-zero
+      // quaternions have no logarithm), both give NaN, but not always of the same sign
+      ASSERT_TRUE(same_bits(x, y) || (std::isnan(x) && std::isnan(y))) << "output entry " << k << " at sample " << sample
                                    << ": runtime " << show(x) << ", simplified " << show(y);
     }
   }
@@ -454,7 +462,9 @@ void expect_fully_simplified(const Graph<T>& g) {
     const Node<T>& n = g.nodes[id];
     if (n.op == Op::Input || n.op == Op::Call || n.op == Op::Result) continue;
     const auto key = std::tuple{n.op, n.a, n.b,
-                                n.op == Op::Const ? std::bit_cast<Bits<T>>(n.value) : Bits<T>(0)};
+                                n.op == Op::Const ? std::bit_cast<Bits<T>>(n.value)
+                                : n.op == Op::Fn  ? static_cast<Bits<T>>(n.input)
+                                                  : Bits<T>(0)};
     EXPECT_TRUE(seen.insert(key).second) << "node " << id << " duplicates an earlier one";
     if (n.op == Op::Const) continue;
     const bool ca = g.is_const(n.a), cb = n.b >= 0 && g.is_const(n.b);
@@ -492,6 +502,9 @@ std::vector<TraceCase> trace_cases() {
   for (const char* robot : {"planar5.yaml", "ur5.urdf", "panda.urdf"})
     for (const Algorithm& a : algorithm_names())
       for (const bool single : {false, true}) cases.push_back({robot, a, single});
+  // the configuration space's functions of lie.h (Op::Fn) on a free joint and ball joints
+  for (const char* a : {"integrate", "difference", "integrate_derivatives", "difference_derivatives"})
+    for (const bool single : {false, true}) cases.push_back({"mjcf/ball.xml", a, single});
   return cases;
 }
 

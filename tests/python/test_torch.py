@@ -119,6 +119,18 @@ def test_difference_inverts_integrate():
     assert isinstance(mine, np.ndarray) and np.array_equal(mine, T.difference(q0, q1).numpy())
 
 
+@double_only
+@pytest.mark.skipif(not hasattr(d, "integrate"), reason="the module has no generated integrate")
+def test_generated_integrate_and_difference_are_these():
+    # the module's generated functions (dyngen_lie.h's coefficients, series near 0) against this
+    # file's (PyTorch's sin, cos and atan2), at every angle from the series to near pi
+    q0, v, _ = states(8, seed=8)
+    q1 = states(8, seed=9)[0]
+    v[:4] *= torch.logspace(-8, 0, 4, dtype=T.dtype)[:, None]
+    assert np.abs(d.integrate(q0.numpy(), v.numpy()) - T.integrate(q0, v).numpy()).max() <= 1e-13
+    assert np.abs(d.difference(q0.numpy(), q1.numpy()) - T.difference(q0, q1).numpy()).max() <= 1e-12
+
+
 def test_integrate_and_difference_are_differentiable():
     q0, v, _ = (x.double().requires_grad_() for x in states(2, seed=6))
     q1 = states(2, seed=7)[0].double().requires_grad_()

@@ -10,6 +10,7 @@
 
 #include "dyngen/aba.hpp"
 #include "dyngen/aba_derivatives.hpp"
+#include "dyngen/configuration.hpp"
 #include "dyngen/constrained.hpp"
 #include "dyngen/contact_derivatives.hpp"
 #include "dyngen/crba.hpp"
@@ -139,6 +140,33 @@ inline constexpr ArraySpec Y_array{
     "inertial-parameter regressor, nv x 10 nbodies row-major: Y[k * 10 nbodies + 10 i + p], "
     "with tau = Y pi + armature a for pi the bodies' standard parameters (m, m c, Ixx, Ixy, Iyy, "
     "Ixz, Iyz, Izz about the body's origin) in body order"};
+
+inline constexpr ArraySpec q_plus_array{
+    "q_plus", length_nq,
+    "q moved by the tangent vector v for unit time (free joints: the pose times exp(v) in its "
+    "body frame; ball joints: the rotation times exp(v))"};
+inline constexpr ArraySpec q_target_array{"q_target", length_nq, "joint positions to reach from q"};
+inline constexpr ArraySpec delta_array{
+    "delta", length_nv,
+    "the tangent vector from q to q_target: integrate(q, delta) = q_target, rotations the "
+    "shorter way round"};
+
+inline constexpr ArraySpec dintegrate_dq_array{
+    "dintegrate_dq", length_nv_nv,
+    "d q_plus / dq in tangent coordinates, row-major, block diagonal (Pinocchio's dIntegrate, "
+    "ARG0)"};
+inline constexpr ArraySpec dintegrate_dv_array{
+    "dintegrate_dv", length_nv_nv,
+    "d q_plus / dv in tangent coordinates, row-major, block diagonal (Pinocchio's dIntegrate, "
+    "ARG1)"};
+inline constexpr ArraySpec ddifference_dq_array{
+    "ddifference_dq", length_nv_nv,
+    "d delta / dq in tangent coordinates, row-major, block diagonal (Pinocchio's dDifference, "
+    "ARG0)"};
+inline constexpr ArraySpec ddifference_dq_target_array{
+    "ddifference_dq_target", length_nv_nv,
+    "d delta / dq_target in tangent coordinates, row-major, block diagonal (Pinocchio's "
+    "dDifference, ARG1)"};
 
 template <class S>
 using AlgorithmInputs = std::span<const std::span<const S>>;
@@ -287,6 +315,38 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        Growth::ColumnSteps, false,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          regressor<S>(m, ws, in[0], in[1], in[2], out[0]);
+       }},
+      {"integrate",
+       "The configuration reached from q along the tangent vector v in unit time: q (+) v "
+       "(Pinocchio's integrate).",
+       {q_array, v_array}, {q_plus_array},
+       Growth::Linear, false,
+       [](const Model<S>& m, Workspace<S>&, In in, Out out) {
+         integrate<S>(m, in[0], in[1], out[0]);
+       }},
+      {"difference",
+       "The tangent vector from q to q_target, with integrate(q, delta) = q_target (Pinocchio's "
+       "difference).",
+       {q_array, q_target_array}, {delta_array},
+       Growth::Linear, false,
+       [](const Model<S>& m, Workspace<S>&, In in, Out out) {
+         difference<S>(m, in[0], in[1], out[0]);
+       }},
+      {"integrate_derivatives",
+       "Jacobians of integrate(q, v) by q and by v, in tangent coordinates (Pinocchio's "
+       "dIntegrate).",
+       {q_array, v_array}, {dintegrate_dq_array, dintegrate_dv_array},
+       Growth::Dense, false,
+       [](const Model<S>& m, Workspace<S>&, In in, Out out) {
+         integrate_derivatives<S>(m, in[0], in[1], out[0], out[1]);
+       }},
+      {"difference_derivatives",
+       "Jacobians of difference(q, q_target) by q and by q_target, in tangent coordinates "
+       "(Pinocchio's dDifference).",
+       {q_array, q_target_array}, {ddifference_dq_array, ddifference_dq_target_array},
+       Growth::Dense, false,
+       [](const Model<S>& m, Workspace<S>&, In in, Out out) {
+         difference_derivatives<S>(m, in[0], in[1], out[0], out[1]);
        }},
       {"contact_dynamics",
        "Forward dynamics under the constraints (--contacts): M qdd + h = tau + J^T lambda with "

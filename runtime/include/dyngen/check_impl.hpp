@@ -56,8 +56,8 @@ Arrays<S> sized(const Model<S>& model, const std::vector<ArraySpec>& arrays,
   return x;
 }
 
-/// The inputs of `spec` for state number s: q, v and the other arrays (a, tau) random within
-/// their ranges, a free or ball joint's quaternion a unit one.
+/// The inputs of `spec` for state number s: configurations (q, q1), v and the other arrays (a,
+/// tau) random within their ranges, a free or ball joint's quaternion a unit one.
 template <class S>
 Arrays<S> make_inputs(const Model<S>& model, const AlgorithmSpec<S>& spec, States states, int s) {
   std::mt19937_64 rng(0x64796e67656e + static_cast<std::uint64_t>(s));
@@ -68,9 +68,10 @@ Arrays<S> make_inputs(const Model<S>& model, const AlgorithmSpec<S>& spec, State
   Arrays<S> x = sized(model, spec.inputs);
   for (std::size_t k = 0; k < x.size(); ++k) {
     const std::string_view name = spec.inputs[k].name;
-    const double range = name == "q" ? q_range : name == "v" ? v_range : x_range;
+    const bool configuration = spec.inputs[k].extent.size == Extent::Nq;
+    const double range = configuration ? q_range : name == "v" ? v_range : x_range;
     for (S& e : x[k]) e = static_cast<S>(uniform(rng, -range, range));
-    if (name != "q") continue;
+    if (!configuration) continue;
     // the algorithms assume a unit quaternion: a huge one would overflow, and the contract
     // holds for computations that stay finite
     for (int i = 0; i < model.nbodies; ++i) {

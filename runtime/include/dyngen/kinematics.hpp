@@ -1,13 +1,15 @@
 // Kinematics for integrators and for checking them: the time derivative of q, which differs
 // from v only at free and ball joints (a quaternion has four entries and three rates), the
-// projection of an integrated q back onto unit quaternions, body poses and velocities, and the
-// energies and momentum that a simulation should conserve.
+// projection of an integrated q back onto unit quaternions (integrate itself is in
+// configuration.hpp), body poses and velocities, and the energies and momentum that a
+// simulation should conserve.
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <span>
 
+#include "dyngen/configuration.hpp"
 #include "dyngen/joint.hpp"
 #include "dyngen/workspace.hpp"
 
@@ -52,53 +54,6 @@ void normalize_configuration(const Model<S>& model, std::span<S> q) {
     S* quat = &q[model.q_index[i] + o];
     const S norm = sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3]);
     for (int k = 0; k < 4; ++k) quat[k] = quat[k] / norm;
-  }
-}
-
-/// q (+) d: q moved by the tangent vector d (nv entries, in v's order): q + d for 1-DoF joints;
-/// for a free joint its pose M = (R, p) times exp(d) with d = (linear, angular) in the body's own
-/// frame: R exp([w]) and p + R V(w) d_lin (the SE(3) exponential; V = 1 + (1 - cos t)/t^2 [w] +
-/// (t - sin t)/t^3 [w]^2, t = |w|), the quaternion times (cos(t/2), sin(t/2) w/t); for a ball
-/// joint R exp([w]) alone. This is the perturbation of the derivatives' free and ball columns
-/// (rnea_derivatives), and with d = v dt it integrates a constant body velocity exactly.
-template <class S>
-void integrate(const Model<S>& model, std::span<const S> q, std::span<const S> d,
-               std::span<S> out) {
-  using std::cos;
-  using std::sin;
-  using std::sqrt;
-  for (int i = 0; i < model.nbodies; ++i) {
-    const S* qi = &q[model.q_index[i]];
-    const S* di = &d[model.v_index[i]];
-    S* o = &out[model.q_index[i]];
-    const int k = quaternion_offset(model.joint_type[i]);
-    if (k < 0) {
-      o[0] = qi[0] + di[0];
-      continue;
-    }
-    const Vec3<S> w{di[k], di[k + 1], di[k + 2]};
-    const S t2 = dot(w, w), t = sqrt(t2);
-    // (1 - cos t)/t^2, (t - sin t)/t^3 and sin(t/2)/t, by their series below t = 1e-4
-    const bool small = t < S(1e-4);
-    const S h = small ? S(0.5) - t2 / S(48) : sin(t / S(2)) / t;
-    if (k > 0) {
-      const Vec3<S> u{di[0], di[1], di[2]};
-      const S b = small ? S(0.5) - t2 / S(24) : (S(1) - cos(t)) / t2;
-      const S c = small ? S(1) / S(6) - t2 / S(120) : (t - sin(t)) / (t2 * t);
-      const Vec3<S> wu = cross(w, u);
-      const Vec3<S> Vu = u + scale(wu, b) + scale(cross(w, wu), c);
-      const Mat3<S> R = quaternion_rotation(qi[3], qi[4], qi[5], qi[6]);
-      const Vec3<S> p = Vec3<S>{qi[0], qi[1], qi[2]} + mul(R, Vu);
-      o[0] = p.x, o[1] = p.y, o[2] = p.z;
-    }
-    // quat (x) (cos(t/2), h w)
-    const S qw = qi[k];
-    const Vec3<S> qv{qi[k + 1], qi[k + 2], qi[k + 3]};
-    const S e0 = cos(t / S(2));
-    const Vec3<S> e = scale(w, h);
-    const Vec3<S> v = scale(e, qw) + scale(qv, e0) + cross(qv, e);
-    o[k] = qw * e0 - dot(qv, e);
-    o[k + 1] = v.x, o[k + 2] = v.y, o[k + 3] = v.z;
   }
 }
 

@@ -25,6 +25,7 @@ enum class Pass : std::uint8_t {
   Frames,              // frames: the placements and accelerations of the frames on a body
   JacobianColumns,     // frames, centre of mass, centroidal momentum: a joint's columns
   Constraints,         // constraints: their accelerations, operational space and solve
+  Configuration,       // integrate, difference: the joint's exponential or logarithm
 };
 
 inline const char* pass_name(Pass p) {
@@ -43,6 +44,7 @@ inline const char* pass_name(Pass p) {
     case Pass::Frames: return "its frames";
     case Pass::JacobianColumns: return "its joint's Jacobian columns";
     case Pass::Constraints: return "constraints";
+    case Pass::Configuration: return "configuration space";
   }
   return "?";
 }
