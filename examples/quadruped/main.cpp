@@ -63,12 +63,11 @@ int main(int argc, char** argv) {
     std::perror(argv[1]);
     return 1;
   }
-  const dyngen::Model<double> model = solo12_quadruped::runtime_model();
   const quadruped::State x0 = quadruped::initial_state();
   std::printf("solo12, %.4f kg, feet %.0f mm above the ground, step %g s\n", quadruped::total_mass,
               1e3 * quadruped::drop_height, quadruped::step);
 
-  const quadruped::Drop drop = quadruped::drop(model, x0);
+  const quadruped::Drop drop = quadruped::drop(x0);
   const quadruped::Impact impact = quadruped::touchdown(drop.touchdown);
   report_touchdown(drop, impact);
 
@@ -85,7 +84,7 @@ int main(int argc, char** argv) {
                    s.drift[2], s.drift[3], s.base_height);
   };
   const auto start = Clock::now();
-  const auto w = quadruped::stand<seconds>(model, {drop.touchdown.q, impact.v_plus}, drop.anchors,
+  const auto w = quadruped::stand<seconds>({drop.touchdown.q, impact.v_plus}, drop.anchors,
                                            controller, log);
   const double per_step =
       microseconds_since(start, static_cast<int>(std::lround(seconds / quadruped::step)));

@@ -4,15 +4,14 @@
 //   drop:      the generated aba with the feet free, until the feet cross z = 0;
 //   touchdown: the generated impulse_dynamics stops the feet (J v_plus = 0);
 //   standing:  the generated contact_dynamics under a joint PD with gravity compensation.
-// Semi-implicit Euler at 1 ms, q (+) dt v by the runtime's dyngen::integrate. Everything in the
-// loops is fixed-size: no heap.
+// Semi-implicit Euler at 1 ms, q (+) dt v by the generated integrate. Everything in the loops is
+// fixed-size: no heap.
 #pragma once
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <dyngen/kinematics.hpp>
 #include <limits>
 #include <span>
 
@@ -104,11 +103,11 @@ inline State initial_state() {
 
 /// One semi-implicit Euler step: v += dt qdd, then q = q (+) dt v on the configuration space
 /// (the free joint's quaternion turned by the rotation dt w, not added to).
-inline void euler_step(const dyngen::Model<double>& model, State& x, const VectorV& qdd) {
+inline void euler_step(State& x, const VectorV& qdd) {
   x.v += step * qdd;
   const VectorV d = step * x.v;
   const VectorQ q = x.q;  // integrate's input, kept apart from its output
-  dyngen::integrate<double>(model, {q.data(), nq}, {d.data(), nv}, {x.q.data(), nq});
+  robot::integrate(q.data(), d.data(), x.q.data());
 }
 
 /// Phase 1, the drop. With no joint torque every body falls with the same acceleration g, so the
@@ -122,13 +121,13 @@ struct Drop {
   Feet anchors;            // where the feet touched down, which the standing phase holds them to
 };
 
-inline Drop drop(const dyngen::Model<double>& model, State x) {
+inline Drop drop(State x) {
   const VectorV tau = VectorV::Zero();
   VectorV qdd;
   constexpr int max_steps = 1000;  // 1 s: far more than the 0.1 s a 5 cm fall takes
   for (int k = 1; k <= max_steps; ++k) {
     robot::aba(x.q.data(), x.v.data(), tau.data(), qdd.data());
-    euler_step(model, x, qdd);
+    euler_step(x, qdd);
     const Feet p = feet(x.q).p;
     const auto down =
         std::count_if(p.begin(), p.end(), [](const Vector3& f) { return f.z() <= 0; });
@@ -211,8 +210,8 @@ struct Sample {
 /// Phase 3, standing: Seconds of contact_dynamics under the controller from x, the feet held
 /// where they touched down (anchors). on_step(const Sample&) sees every step.
 template <int Seconds, class OnStep>
-std::array<Second, Seconds> stand(const dyngen::Model<double>& model, State x, const Feet& anchors,
-                                  const Controller& controller, OnStep&& on_step) {
+std::array<Second, Seconds> stand(State x, const Feet& anchors, const Controller& controller,
+                                  OnStep&& on_step) {
   const int steps = static_cast<int>(std::lround(1 / step));
   std::array<Second, Seconds> seconds{};
   VectorV qdd;
@@ -221,7 +220,7 @@ std::array<Second, Seconds> stand(const dyngen::Model<double>& model, State x, c
     for (int k = 0; k < steps; ++k) {
       const VectorV tau = controller.torque(x);
       robot::contact_dynamics(x.q.data(), x.v.data(), tau.data(), qdd.data(), lambda.data());
-      euler_step(model, x, qdd);
+      euler_step(x, qdd);
       const FeetKinematics f = feet(x.q);
       const VectorC foot_velocity = f.J * x.v;
       Second& w = seconds[s];

@@ -35,12 +35,11 @@ const double weight = quadruped::total_mass * g;
 
 /// The three phases, run once for all the tests.
 struct Phases {
-  dyngen::Model<double> model = solo12_quadruped::runtime_model();
-  quadruped::Drop drop = quadruped::drop(model, quadruped::initial_state());
+  quadruped::Drop drop = quadruped::drop(quadruped::initial_state());
   quadruped::Impact impact = quadruped::touchdown(drop.touchdown);
   quadruped::Controller controller = quadruped::standing_controller(drop.touchdown.q);
   std::array<Second, seconds> windows = quadruped::stand<seconds>(
-      model, {drop.touchdown.q, impact.v_plus}, drop.anchors, controller, [](const auto&) {});
+      {drop.touchdown.q, impact.v_plus}, drop.anchors, controller, [](const auto&) {});
 };
 
 const Phases& run() {
@@ -179,9 +178,9 @@ TEST(Quadruped, BaseHeightStaysInItsEnergyBand) {
 TEST(Quadruped, PhasesAllocateNothing) {
   const Phases& r = run();
   const dyngen::test::AllocationCounter counter;
-  const quadruped::Drop drop = quadruped::drop(r.model, quadruped::initial_state());
+  const quadruped::Drop drop = quadruped::drop(quadruped::initial_state());
   const quadruped::Impact impact = quadruped::touchdown(drop.touchdown);
-  const auto w = quadruped::stand<1>(r.model, {drop.touchdown.q, impact.v_plus}, drop.anchors,
+  const auto w = quadruped::stand<1>({drop.touchdown.q, impact.v_plus}, drop.anchors,
                                      r.controller, [](const auto&) {});
   EXPECT_EQ(counter.count(), 0u);
   EXPECT_GT(w[0].drift, 0.0);
