@@ -52,7 +52,8 @@ Vec3<double> parse_gravity(const std::string& text) {
 
 /// The algorithms fitted to the model's constraints (listed: --algorithms' text, "" when not
 /// given): without constraints, "all" leaves out those that need them and naming one is an
-/// error; with them, the default set gains contact_dynamics and impulse_dynamics.
+/// error; with them, the default set gains contact_dynamics and impulse_dynamics, and
+/// contact_dynamics_anchored where Baumgarte's kp would act on a contact.
 std::vector<Algorithm> with_constraints(std::vector<Algorithm> algorithms,
                                         const Model<double>& model, const std::string& listed) {
   const auto needs = [](const Algorithm& a) {
@@ -70,9 +71,12 @@ std::vector<Algorithm> with_constraints(std::vector<Algorithm> algorithms,
   }
   if (!listed.empty()) return algorithms;
   // derivatives on request only, as without constraints
+  const bool anchored = model.constraint_settings.kp > 0 &&
+                        std::ranges::any_of(model.constraints, [](const auto& k) { return !k.loop; });
   std::vector<Algorithm> out;
   for (const Algorithm& a : algorithm_names())
-    if ((needs(a) && !a.ends_with("_derivatives")) ||
+    if ((needs(a) && !a.ends_with("_derivatives") &&
+         (a != "contact_dynamics_anchored" || anchored)) ||
         std::find(algorithms.begin(), algorithms.end(), a) != algorithms.end())
       out.push_back(a);
   return out;

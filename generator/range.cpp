@@ -40,6 +40,7 @@ std::map<std::string, std::vector<T>> sample_state(const Model<double>& model, b
   set("a", rng.vector(model.nv, -x_range, x_range));
   set("tau", rng.vector(model.nv, -x_range, x_range));
   set("q_target", configuration());
+  set("anchors", rng.vector(model.nc, -1, 1));
   return state;
 }
 

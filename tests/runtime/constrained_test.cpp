@@ -433,8 +433,8 @@ TEST_P(ContactTest, ImpulseObeysTheImpactLaw) {
   }
 }
 
-// Baumgarte's velocity gain on contacts: J qdd + Jdot v = -kd J v, kd = 10. kp acts on a loop's
-// position error only, and a contact has none: kp = 100 changes nothing.
+// Baumgarte's velocity gain on contacts: J qdd + Jdot v = -kd J v, kd = 10. Without anchors kp
+// acts on a loop's position error only, and a contact has none: kp = 100 changes nothing.
 TEST_P(ContactTest, HoldsBaumgarteVelocityGain) {
   ConstraintSettings<double> settings;
   settings.kd = 10;
@@ -453,6 +453,70 @@ TEST_P(ContactTest, HoldsBaumgarteVelocityGain) {
   }
   std::cout << GetParam().name << " kd=10: dynamics residual " << worst_dynamics
             << ", constraint residual " << worst_constraint << "\n";
+  EXPECT_LE(worst_dynamics, 1e-12);
+  EXPECT_LE(worst_constraint, 1e-12);
+}
+
+/// Frame A's placement of each constraint at q: rotation R (row-major) and origin p, base
+/// coordinates (frames.hpp's frame_placements).
+struct Placements {
+  std::vector<double> R, p;
+};
+
+Placements contact_placements(const Model<double>& model, const Vector& q) {
+  Model<double> fm = model;
+  fm.frames.clear();
+  for (const Constraint<double>& c : model.constraints)
+    fm.frames.push_back({c.name, c.body_a, c.placement_a});
+  Workspace<double> ws(fm);
+  Placements x{std::vector<double>(9 * fm.frames.size()), std::vector<double>(3 * fm.frames.size())};
+  frame_placements<double>(fm, ws, span(q), x.R, x.p);
+  return x;
+}
+
+using Rotation = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+
+// Baumgarte's kp on contacts from their anchors (contact_dynamics_anchored): the anchors are the
+// contact frames' placements at a configuration 0.05 away, the rotation as Eigen's angle-axis
+// vector; e (p_A - p_ref, then 1/2 vee(R_A R_ref^T - R_ref R_A^T)) from frame_placements, and
+// J qdd + Jdot v = -kd J v - kp e with M qdd + h = tau + J^T lam.
+TEST_P(ContactTest, AnchorsGiveBaumgartesPositionGain) {
+  ConstraintSettings<double> settings;
+  settings.kd = 20, settings.kp = 100;
+  const Model<double> model = load(GetParam(), settings);
+  test::Random rng(59);
+  double worst_dynamics = 0, worst_constraint = 0, smallest_e = 1;
+  for (const Sample& s : random_samples(model, 59)) {
+    Vector d(model.nv), q_ref(model.nq), anchors(model.nc);
+    for (double& x : d) x = rng.uniform(-0.05, 0.05);
+    integrate<double>(model, span(s.q), span(d), span(q_ref));
+    const Placements ref = contact_placements(model, q_ref), now = contact_placements(model, s.q);
+    Terms<double> t = constraint_terms(model, s.q, s.v);
+    int row = 0;
+    for (std::size_t k = 0; k < model.constraints.size(); ++k) {
+      const Rotation RA = Eigen::Map<const Rotation>(&now.R[9 * k]),
+                     RB = Eigen::Map<const Rotation>(&ref.R[9 * k]);
+      const Eigen::AngleAxisd turn{Rotation(RB)};
+      const Eigen::Vector3d w = turn.angle() * turn.axis();
+      const Rotation W = RA * RB.transpose() - RB * RA.transpose();
+      const double a[6] = {ref.p[3 * k], ref.p[3 * k + 1], ref.p[3 * k + 2], w.x(), w.y(), w.z()};
+      const double e[6] = {now.p[3 * k] - ref.p[3 * k], now.p[3 * k + 1] - ref.p[3 * k + 1],
+                           now.p[3 * k + 2] - ref.p[3 * k + 2], W(2, 1) / 2, W(0, 2) / 2,
+                           W(1, 0) / 2};
+      for (int r = 0; r < constraint_rows(model.constraints[k]); ++r, ++row)
+        anchors(row) = a[r], t.e(row) = e[r];
+    }
+    Workspace<double> ws(model);
+    Solution x{Vector(model.nv), Vector(model.nc)};
+    contact_dynamics<double>(model, ws, span(s.q), span(s.v), span(s.tau), span(x.qdd),
+                             span(x.lam), span(anchors));
+    worst_dynamics = std::max(worst_dynamics, dynamics_residual(model, s, t, x));
+    worst_constraint = std::max(worst_constraint, constraint_residual(t, s.v, x.qdd, 20, 100));
+    smallest_e = std::min(smallest_e, t.e.norm());
+  }
+  std::cout << GetParam().name << " kp=100, kd=20, anchors: dynamics residual " << worst_dynamics
+            << ", constraint residual " << worst_constraint << ", |e| >= " << smallest_e << "\n";
+  EXPECT_GT(smallest_e, 1e-4);  // the anchors are away from the frames: kp matters
   EXPECT_LE(worst_dynamics, 1e-12);
   EXPECT_LE(worst_constraint, 1e-12);
 }

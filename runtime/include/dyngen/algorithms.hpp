@@ -112,6 +112,11 @@ inline constexpr ArraySpec lambda_array{
     "lambda", length_nc,
     "constraint forces on frame A, per constraint: the force at its origin (3d), then the "
     "moment about it (6d), base axes, N and N m"};
+inline constexpr ArraySpec anchors_array{
+    "anchors", length_nc,
+    "each contact's reference placement for Baumgarte's kp, in lambda's layout: its origin, then "
+    "for a surface contact the rotation vector w of its axes (R = exp([w])), base coordinates; "
+    "a loop's entries are not read"};
 inline constexpr ArraySpec dqdd_dtau_array{
     "dqdd_dtau", length_nv_nv, "d qdd / d tau, row-major: dqdd_dtau[i * nv + j] = d qdd_i / d tau_j"};
 inline constexpr ArraySpec dlambda_dq_array{
@@ -355,6 +360,15 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        Growth::Dense, true,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          contact_dynamics<S>(m, ws, in[0], in[1], in[2], out[0], out[1]);
+       },
+       {}, Computes::Other, false, Needs::Constraints},
+      {"contact_dynamics_anchored",
+       "contact_dynamics with Baumgarte's kp acting on the contacts too: e is each contact "
+       "frame's placement from its anchor (frame_placements where it touched down).",
+       {q_array, v_array, tau_array, anchors_array}, {qdd_array, lambda_array},
+       Growth::Dense, true,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         contact_dynamics<S>(m, ws, in[0], in[1], in[2], out[0], out[1], in[3]);
        },
        {}, Computes::Other, false, Needs::Constraints},
       {"contact_dynamics_derivatives",

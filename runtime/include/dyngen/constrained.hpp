@@ -14,6 +14,7 @@
 
 #include <span>
 
+#include "dyngen/configuration.hpp"
 #include "dyngen/crba.hpp"
 #include "dyngen/frames.hpp"
 #include "dyngen/rnea.hpp"
@@ -38,12 +39,28 @@ void position_error(const Xform<S>& XA, const Xform<S>& XB, S* e) {
   e[3] = (R.zy - R.yz) / S(2), e[4] = (R.xz - R.zx) / S(2), e[5] = (R.yx - R.xy) / S(2);
 }
 
+/// A contact's reference placement from its rows of `anchors` (contact_dynamics_anchored): the
+/// origin p, and for 6 rows the rotation exp([w]) of the vector w after it (base axes).
+template <class S>
+Xform<S> anchor_placement(const S* anchor, int rows) {
+  Xform<S> X{{S(1), S(0), S(0), S(0), S(1), S(0), S(0), S(0), S(1)},
+             {anchor[0], anchor[1], anchor[2]}};
+  if (rows == 6) {  // R = 1 + sin t/t [w] + (1 - cos t)/t^2 [w]^2; E = R^T
+    const Vec3<S> w{anchor[3], anchor[4], anchor[5]};
+    const S t2 = dot(w, w), h = half_sinc(t2);
+    X.E = transpose(so3_matrix(w, S(2) * h * half_cos(t2), S(2) * h * h));
+  }
+  return X;
+}
+
 /// ws.Jc (nc x nv, row-major) = J_A - J_B of each constraint in base axes at its frames'
 /// origins (rows: linear, then angular), and ws.gamma = Jdot v, their classical accelerations
-/// at qdd = 0; with v, also ws.Jv = J v. After body_bias_accelerations (or body_placements with
-/// v empty: J alone).
+/// at qdd = 0; with v, also ws.Jv = J v and the position errors ws.perr of loops, and of
+/// contacts from their reference placements where `anchors` (nc) gives them. After
+/// body_bias_accelerations (or body_placements with v empty: J alone).
 template <class S>
-void constraint_jacobians(const Model<S>& model, Workspace<S>& ws, bool with_v) {
+void constraint_jacobians(const Model<S>& model, Workspace<S>& ws, bool with_v,
+                          std::span<const S> anchors = {}) {
   const int nv = model.nv;
   for (std::size_t e = 0; e < ws.Jc.size(); ++e) ws.Jc[e] = S(0);
   int row = 0;
@@ -64,9 +81,12 @@ void constraint_jacobians(const Model<S>& model, Workspace<S>& ws, bool with_v) 
       const Motion<S> g = gA - gB, w = vA - vB;
       const S gs[6] = {g.lin.x, g.lin.y, g.lin.z, g.ang.x, g.ang.y, g.ang.z};
       const S ws6[6] = {w.lin.x, w.lin.y, w.lin.z, w.ang.x, w.ang.y, w.ang.z};
-      // the position error of a loop (a contact's reference is where it was set: none here)
+      // the position error of a loop, or of a contact from its anchor where one is given
       S e[6] = {};
-      if (k.loop) position_error(XA, XB, e);
+      if (k.loop)
+        position_error(XA, XB, e);
+      else if (!anchors.empty())
+        position_error(XA, anchor_placement(&anchors[row], rows), e);
       for (int r = 0; r < rows; ++r) {
         ws.gamma[row + r] = gs[r];
         ws.Jv[row + r] = ws6[r];
@@ -197,14 +217,14 @@ void constrained_solution(const Model<S>& model, Workspace<S>& ws, std::span<con
 }
 
 /// M (ws.H) factorised as L^T D L, the constraints' J and A at q, and with v their Jdot v, J v
-/// and position errors.
+/// and position errors (contacts' from anchors, where given).
 template <class S>
 void prepare_constraints(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
-                         std::span<const S> v) {
+                         std::span<const S> v, std::span<const S> anchors = {}) {
   crba<S>(model, ws, q, ws.H);
   factor_ltdl<S>(model.nv, ws.column_parent.data(), ws.H, ws.column_Dinv);
   body_bias_accelerations(model, ws, q, v);
-  constraint_jacobians(model, ws, true);
+  constraint_jacobians(model, ws, true, anchors);
   operational_space(model, ws);
 }
 
@@ -213,13 +233,15 @@ void prepare_constraints(const Model<S>& model, Workspace<S>& ws, std::span<cons
 /// Forward dynamics under the model's constraints: qdd and the multipliers lam (nc: per
 /// constraint 3 or 6, the force on frame A at its origin then the moment, base axes) with
 /// M qdd + h = tau + J^T lam and J qdd + Jdot v = -kd J v - kp e (Baumgarte; e a loop's position
-/// error). Needs the workspace's matrix buffers; no allocation.
+/// error, and a contact's from its reference placement in `anchors` when given: nc entries, per
+/// contact its origin, then for 6 rows the rotation vector of its axes, base coordinates; a
+/// loop's entries are not read). Needs the workspace's matrix buffers; no allocation.
 template <class S>
 void contact_dynamics(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                       std::span<const S> v, std::span<const S> tau, std::span<S> qdd,
-                      std::span<S> lam) {
+                      std::span<S> lam, std::span<const S> anchors = {}) {
   const int n = model.nv, m = model.nc;
-  detail::prepare_constraints(model, ws, q, v);
+  detail::prepare_constraints(model, ws, q, v, anchors);
   nle<S>(model, ws, q, v, ws.h);
   TraceHook<S>::enter(-1, Pass::Constraints);
   // y = L^-T (tau - h); r = c - J M^-1 (tau - h) = c - W D^-1 y
