@@ -281,19 +281,21 @@ TEST_P(ContactTest, MatchesTheKktSolutionInMpfr) {
 /// 256-bit MPFR at q (+) +-h e_c (integrate, tangent columns), v +- h e_c and tau +- h e_c, h =
 /// 1e-20 (truncation h^2, rounding 2^-256 / h: both far below double's eps). Returns the largest
 /// error over max|entry| of each of the six, over eps times solve_condition.
-double derivative_error(const Model<double>& model, const Sample& s) {
+double derivative_error(const Model<double>& model, const Sample& s,
+                        const Vector& anchors = Vector()) {
   const int n = model.nv, m = model.nc;
   std::vector<double> d[6] = {std::vector<double>(n * n), std::vector<double>(n * n),
                               std::vector<double>(n * n), std::vector<double>(m * n),
                               std::vector<double>(m * n), std::vector<double>(m * n)};
   Workspace<double> ws(model);
   contact_dynamics_derivatives<double>(model, ws, span(s.q), span(s.v), span(s.tau), d[0], d[1],
-                                       d[2], d[3], d[4], d[5]);
+                                       d[2], d[3], d[4], d[5], span(anchors));
   mpfr::mpreal::set_default_prec(numerics::exact_bits);
   const Model<Exact> exact = model.cast<Exact>();
   Workspace<Exact> xws(exact);
   const Exact h("1e-20");
-  const VectorX<Exact> q = s.q.cast<Exact>(), v = s.v.cast<Exact>(), tau = s.tau.cast<Exact>();
+  const VectorX<Exact> q = s.q.cast<Exact>(), v = s.v.cast<Exact>(), tau = s.tau.cast<Exact>(),
+                       a = anchors.cast<Exact>();
   double worst = 0;
   for (int x = 0; x < 3; ++x) {
     Matrix fd_qdd(n, n), fd_lam(m, n);
@@ -307,7 +309,7 @@ double derivative_error(const Model<double>& model, const Sample& s) {
         if (x == 1) vx += step;
         if (x == 2) taux += step;
         contact_dynamics<Exact>(exact, xws, span(qx), span(vx), span(taux), span(out[side][0]),
-                                span(out[side][1]));
+                                span(out[side][1]), span(a));
       }
       for (int r = 0; r < n; ++r)
         fd_qdd(r, c) = ((out[0][0](r) - out[1][0](r)) / (2 * h)).toDouble();
@@ -476,6 +478,28 @@ Placements contact_placements(const Model<double>& model, const Vector& q) {
 
 using Rotation = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
+/// q moved by up to 0.05 in each tangent coordinate.
+Vector nearby(const Model<double>& model, const Vector& q, test::Random& rng) {
+  Vector d(model.nv), out(model.nq);
+  for (double& x : d) x = rng.uniform(-0.05, 0.05);
+  integrate<double>(model, span(q), span(d), span(out));
+  return out;
+}
+
+/// contact_dynamics_anchored's anchors for the contact frames at placements x: each origin,
+/// then for 6 rows the rotation as Eigen's angle-axis vector.
+Vector anchors_of(const Model<double>& model, const Placements& x) {
+  Vector anchors(model.nc);
+  int row = 0;
+  for (std::size_t k = 0; k < model.constraints.size(); ++k) {
+    const Eigen::AngleAxisd turn{Rotation(Eigen::Map<const Rotation>(&x.R[9 * k]))};
+    const Eigen::Vector3d w = turn.angle() * turn.axis();
+    const double a[6] = {x.p[3 * k], x.p[3 * k + 1], x.p[3 * k + 2], w.x(), w.y(), w.z()};
+    for (int r = 0; r < constraint_rows(model.constraints[k]); ++r, ++row) anchors(row) = a[r];
+  }
+  return anchors;
+}
+
 // Baumgarte's kp on contacts from their anchors (contact_dynamics_anchored): the anchors are the
 // contact frames' placements at a configuration 0.05 away, the rotation as Eigen's angle-axis
 // vector; e (p_A - p_ref, then 1/2 vee(R_A R_ref^T - R_ref R_A^T)) from frame_placements, and
@@ -487,24 +511,19 @@ TEST_P(ContactTest, AnchorsGiveBaumgartesPositionGain) {
   test::Random rng(59);
   double worst_dynamics = 0, worst_constraint = 0, smallest_e = 1;
   for (const Sample& s : random_samples(model, 59)) {
-    Vector d(model.nv), q_ref(model.nq), anchors(model.nc);
-    for (double& x : d) x = rng.uniform(-0.05, 0.05);
-    integrate<double>(model, span(s.q), span(d), span(q_ref));
-    const Placements ref = contact_placements(model, q_ref), now = contact_placements(model, s.q);
+    const Placements ref = contact_placements(model, nearby(model, s.q, rng)),
+                     now = contact_placements(model, s.q);
+    const Vector anchors = anchors_of(model, ref);
     Terms<double> t = constraint_terms(model, s.q, s.v);
     int row = 0;
     for (std::size_t k = 0; k < model.constraints.size(); ++k) {
       const Rotation RA = Eigen::Map<const Rotation>(&now.R[9 * k]),
                      RB = Eigen::Map<const Rotation>(&ref.R[9 * k]);
-      const Eigen::AngleAxisd turn{Rotation(RB)};
-      const Eigen::Vector3d w = turn.angle() * turn.axis();
       const Rotation W = RA * RB.transpose() - RB * RA.transpose();
-      const double a[6] = {ref.p[3 * k], ref.p[3 * k + 1], ref.p[3 * k + 2], w.x(), w.y(), w.z()};
       const double e[6] = {now.p[3 * k] - ref.p[3 * k], now.p[3 * k + 1] - ref.p[3 * k + 1],
                            now.p[3 * k + 2] - ref.p[3 * k + 2], W(2, 1) / 2, W(0, 2) / 2,
                            W(1, 0) / 2};
-      for (int r = 0; r < constraint_rows(model.constraints[k]); ++r, ++row)
-        anchors(row) = a[r], t.e(row) = e[r];
+      for (int r = 0; r < constraint_rows(model.constraints[k]); ++r, ++row) t.e(row) = e[r];
     }
     Workspace<double> ws(model);
     Solution x{Vector(model.nv), Vector(model.nc)};
@@ -519,6 +538,22 @@ TEST_P(ContactTest, AnchorsGiveBaumgartesPositionGain) {
   EXPECT_GT(smallest_e, 1e-4);  // the anchors are away from the frames: kp matters
   EXPECT_LE(worst_dynamics, 1e-12);
   EXPECT_LE(worst_constraint, 1e-12);
+}
+
+// contact_dynamics_anchored_derivatives (kp 100, kd 20, anchors as above) against MPFR central
+// differences of contact_dynamics with the same anchors, as DerivativesMatchCentralDifferences.
+TEST_P(ContactTest, AnchoredDerivativesMatchCentralDifferencesInMpfr) {
+  ConstraintSettings<double> settings;
+  settings.kd = 20, settings.kp = 100;
+  const Model<double> model = load(GetParam(), settings);
+  test::Random rng(61);
+  double worst = 0;
+  for (const Sample& s : random_samples(model, 61, 1))
+    worst = std::max(worst, derivative_error(model, s,
+                                             anchors_of(model, contact_placements(
+                                                                   model, nearby(model, s.q, rng)))));
+  std::cout << GetParam().name << " anchored: derivatives' error over eps cond " << worst << "\n";
+  EXPECT_LE(worst, 1000);
 }
 
 // Four feet in 6d on solo12: 24 rows on 18 degrees of freedom, every one locked, consistent only

@@ -382,6 +382,17 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
                                          out[3], out[4], out[5]);
        },
        {}, Computes::Other, false, Needs::Constraints},
+      {"contact_dynamics_anchored_derivatives",
+       "Derivatives of contact_dynamics_anchored by q, v and tau (the anchors held fixed).",
+       {q_array, v_array, tau_array, anchors_array},
+       {dqdd_dq_array, dqdd_dv_array, dqdd_dtau_array, dlambda_dq_array, dlambda_dv_array,
+        dlambda_dtau_array},
+       Growth::Dense, true,
+       [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
+         contact_dynamics_derivatives<S>(m, ws, in[0], in[1], in[2], out[0], out[1], out[2],
+                                         out[3], out[4], out[5], in[3]);
+       },
+       {}, Computes::Other, false, Needs::Constraints},
       {"impulse_dynamics",
        "The impulse of the constraints at impact (--contacts), from the velocities v before it: "
        "M (v_plus - v) = J^T impulse with J v_plus = -e J v (e: --restitution).",

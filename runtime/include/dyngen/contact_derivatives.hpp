@@ -63,11 +63,13 @@ Vec3<S> vary_rotation_error(const Mat3<S>& R, const Vec3<S>& w, bool side_a) {
 
 /// One side of a constraint (frame X on body b, sign +1 for A, -1 for B) adds its terms at
 /// fixed qdd and lam (rows r0.., `rows` of them) to R1q = d(J^T lam)/dq and subtracts them from
-/// R2q, R2v (nc x nv). After body_bias_accelerations at qdd.
+/// R2q, R2v (nc x nv); `positioned`: kp acts on its position error (a loop, an anchored
+/// contact). After body_bias_accelerations at qdd.
 template <class S>
 void add_constraint_side(const Model<S>& model, const Workspace<S>& ws, const Constraint<S>& k,
-                         int b, const Xform<S>& X, bool side_a, int r0, std::span<const S> lam,
-                         const Mat3<S>& R, std::span<S> R1q, std::span<S> R2q, std::span<S> R2v) {
+                         int b, const Xform<S>& X, bool side_a, bool positioned, int r0,
+                         std::span<const S> lam, const Mat3<S>& R, std::span<S> R1q,
+                         std::span<S> R2q, std::span<S> R2v) {
   const int n = model.nv, rows = constraint_rows(k);
   const ConstraintSettings<S>& cs = model.constraint_settings;
   const S sign = side_a ? S(1) : S(-1);
@@ -103,15 +105,15 @@ void add_constraint_side(const Model<S>& model, const Workspace<S>& ws, const Co
       const Motion<S> dav = cross_motion(ws.v[jk], sk) + cross_motion(sk, vb - vp);
       const Motion<S> gq = vary_frame_acceleration(ws, b, p, dvq, daq, dp, cs.kd);
       const Motion<S> gv = vary_frame_acceleration(ws, b, p, sk, dav, Vec3<S>{}, cs.kd);
-      Motion<S> eq{};  // the loop's position error, kp e
-      if (k.loop) eq = {vary_rotation_error(R, sk.ang, side_a), scale(dp, sign)};
+      Motion<S> eq{};  // the position error, kp e
+      if (positioned) eq = {vary_rotation_error(R, sk.ang, side_a), scale(dp, sign)};
       const S dq[6] = {gq.lin.x, gq.lin.y, gq.lin.z, gq.ang.x, gq.ang.y, gq.ang.z};
       const S dv[6] = {gv.lin.x, gv.lin.y, gv.lin.z, gv.ang.x, gv.ang.y, gv.ang.z};
       const S de[6] = {eq.lin.x, eq.lin.y, eq.lin.z, eq.ang.x, eq.ang.y, eq.ang.z};
       for (int r = 0; r < rows; ++r) {
         S& q_entry = R2q[row_major(n, r0 + r, ck)];
         S& v_entry = R2v[row_major(n, r0 + r, ck)];
-        q_entry = k.loop ? q_entry - sign * dq[r] - cs.kp * de[r] : q_entry - sign * dq[r];
+        q_entry = positioned ? q_entry - sign * dq[r] - cs.kp * de[r] : q_entry - sign * dq[r];
         v_entry = v_entry - sign * dv[r];
       }
     }
@@ -173,15 +175,17 @@ void constrained_columns(const Model<S>& model, Workspace<S>& ws, std::span<S> d
 /// nc x nv, row-major (dqdd_dq[i * nv + j] = d qdd_i / dq_j, dlam_dq[r * nv + j] = d lam_r /
 /// dq_j); the columns of free and ball joints are tangent directions, as in rnea_derivatives.
 /// Redundant constraints are differentiated through the damped solve (T), exact in the limit
-/// of independent rows. Needs the workspace's matrix buffers; no allocation.
+/// of independent rows. With `anchors`, those of contact_dynamics with them (the contacts'
+/// position errors under kp). Needs the workspace's matrix buffers; no allocation.
 template <class S>
 void contact_dynamics_derivatives(const Model<S>& model, Workspace<S>& ws, std::span<const S> q,
                                   std::span<const S> v, std::span<const S> tau,
                                   std::span<S> dqdd_dq, std::span<S> dqdd_dv,
                                   std::span<S> dqdd_dtau, std::span<S> dlam_dq,
-                                  std::span<S> dlam_dv, std::span<S> dlam_dtau) {
+                                  std::span<S> dlam_dv, std::span<S> dlam_dtau,
+                                  std::span<const S> anchors = {}) {
   const int n = model.nv;
-  contact_dynamics<S>(model, ws, q, v, tau, ws.constrained_qdd, ws.lam);
+  contact_dynamics<S>(model, ws, q, v, tau, ws.constrained_qdd, ws.lam, anchors);
   TraceHook<S>::enter(-1, Pass::Constraints);
   detail::proximal_map(model, ws);
   rnea_derivatives<S>(model, ws, q, v, ws.constrained_qdd, ws.dtau_dq, ws.dtau_dv);
@@ -193,15 +197,20 @@ void contact_dynamics_derivatives(const Model<S>& model, Workspace<S>& ws, std::
   int r0 = 0;
   for (const Constraint<S>& k : model.constraints) {
     TraceHook<S>::enter(k.body_a, Pass::Constraints);
+    // frame B: a loop's, or an anchored contact's reference (fixed: no side of its own)
+    const bool anchored = !k.loop && !anchors.empty();
     const Xform<S> XA = k.body_a < 0 ? k.placement_a : compose(k.placement_a, ws.X0[k.body_a]);
-    const Xform<S> XB = k.body_b < 0 ? k.placement_b : compose(k.placement_b, ws.X0[k.body_b]);
+    const Xform<S> XB = anchored       ? detail::anchor_placement(&anchors[r0], constraint_rows(k))
+                        : k.body_b < 0 ? k.placement_b
+                                       : compose(k.placement_b, ws.X0[k.body_b]);
     const Mat3<S> R = mul(transpose(XA.E), XB.E);  // R_A R_B^T, as position_error
+    const bool positioned = k.loop || anchored;
     if (k.body_a >= 0)
-      detail::add_constraint_side<S>(model, ws, k, k.body_a, XA, true, r0, ws.lam, R, dqdd_dq,
-                                     dlam_dq, dlam_dv);
+      detail::add_constraint_side<S>(model, ws, k, k.body_a, XA, true, positioned, r0, ws.lam, R,
+                                     dqdd_dq, dlam_dq, dlam_dv);
     if (k.body_b >= 0)
-      detail::add_constraint_side<S>(model, ws, k, k.body_b, XB, false, r0, ws.lam, R, dqdd_dq,
-                                     dlam_dq, dlam_dv);
+      detail::add_constraint_side<S>(model, ws, k, k.body_b, XB, false, positioned, r0, ws.lam,
+                                     R, dqdd_dq, dlam_dq, dlam_dv);
     r0 += constraint_rows(k);
   }
   // d tau: R1 = 1, R2 = 0
