@@ -13,6 +13,7 @@
 #pragma once
 
 #include <span>
+#include <utility>
 
 #include "dyngen/configuration.hpp"
 #include "dyngen/crba.hpp"
@@ -53,6 +54,22 @@ Xform<S> anchor_placement(const S* anchor, int rows) {
   return X;
 }
 
+/// Frames A and B of constraint k (base to frame) after body_placements: B of an anchored
+/// contact (`anchor`: its rows of anchors, or null) is its reference, which does not move.
+template <class S>
+std::pair<Xform<S>, Xform<S>> constraint_frames(const Workspace<S>& ws, const Constraint<S>& k,
+                                                const S* anchor) {
+  const Xform<S> XA = k.body_a < 0 ? k.placement_a : compose(k.placement_a, ws.X0[k.body_a]);
+  if (anchor && !k.loop) return {XA, anchor_placement(anchor, constraint_rows(k))};
+  return {XA, k.body_b < 0 ? k.placement_b : compose(k.placement_b, ws.X0[k.body_b])};
+}
+
+/// Whether kp acts on constraint k's position error: a loop's, an anchored contact's.
+template <class S>
+bool positioned(const Constraint<S>& k, std::span<const S> anchors) {
+  return k.loop || !anchors.empty();
+}
+
 /// ws.Jc (nc x nv, row-major) = J_A - J_B of each constraint in base axes at its frames'
 /// origins (rows: linear, then angular), and ws.gamma = Jdot v, their classical accelerations
 /// at qdd = 0; with v, also ws.Jv = J v and the position errors ws.perr of loops, and of
@@ -67,8 +84,7 @@ void constraint_jacobians(const Model<S>& model, Workspace<S>& ws, bool with_v,
   for (const Constraint<S>& k : model.constraints) {
     TraceHook<S>::enter(k.body_a, Pass::Frames);
     const int rows = constraint_rows(k);
-    const Xform<S> XA = k.body_a < 0 ? k.placement_a : compose(k.placement_a, ws.X0[k.body_a]);
-    const Xform<S> XB = k.body_b < 0 ? k.placement_b : compose(k.placement_b, ws.X0[k.body_b]);
+    const auto [XA, XB] = constraint_frames(ws, k, anchors.empty() ? nullptr : &anchors[row]);
     S* J = &ws.Jc[static_cast<std::size_t>(row) * nv];
     put_frame_jacobian(model, ws, k.body_a, XA, JacobianAxes::World, rows, false, J);
     if (k.body_b >= 0)
@@ -83,10 +99,7 @@ void constraint_jacobians(const Model<S>& model, Workspace<S>& ws, bool with_v,
       const S ws6[6] = {w.lin.x, w.lin.y, w.lin.z, w.ang.x, w.ang.y, w.ang.z};
       // the position error of a loop, or of a contact from its anchor where one is given
       S e[6] = {};
-      if (k.loop)
-        position_error(XA, XB, e);
-      else if (!anchors.empty())
-        position_error(XA, anchor_placement(&anchors[row], rows), e);
+      if (positioned(k, anchors)) position_error(XA, XB, e);
       for (int r = 0; r < rows; ++r) {
         ws.gamma[row + r] = gs[r];
         ws.Jv[row + r] = ws6[r];

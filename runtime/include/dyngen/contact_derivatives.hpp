@@ -197,14 +197,10 @@ void contact_dynamics_derivatives(const Model<S>& model, Workspace<S>& ws, std::
   int r0 = 0;
   for (const Constraint<S>& k : model.constraints) {
     TraceHook<S>::enter(k.body_a, Pass::Constraints);
-    // frame B: a loop's, or an anchored contact's reference (fixed: no side of its own)
-    const bool anchored = !k.loop && !anchors.empty();
-    const Xform<S> XA = k.body_a < 0 ? k.placement_a : compose(k.placement_a, ws.X0[k.body_a]);
-    const Xform<S> XB = anchored       ? detail::anchor_placement(&anchors[r0], constraint_rows(k))
-                        : k.body_b < 0 ? k.placement_b
-                                       : compose(k.placement_b, ws.X0[k.body_b]);
+    const auto [XA, XB] =
+        detail::constraint_frames(ws, k, anchors.empty() ? nullptr : &anchors[r0]);
     const Mat3<S> R = mul(transpose(XA.E), XB.E);  // R_A R_B^T, as position_error
-    const bool positioned = k.loop || anchored;
+    const bool positioned = detail::positioned(k, anchors);
     if (k.body_a >= 0)
       detail::add_constraint_side<S>(model, ws, k, k.body_a, XA, true, positioned, r0, ws.lam, R,
                                      dqdd_dq, dlam_dq, dlam_dv);
