@@ -71,7 +71,8 @@ class BatchBackend final : public Backend, public Dialect {
     std::string out = "lane{";
     for (int l = 0; l < lanes_; ++l) {
       std::string items;
-      for (const std::string& a : arguments) items += fmt::format("{}{}[{}]", items.empty() ? "" : ", ", a, l);
+      for (const std::string& a : arguments)
+        items += fmt::format("{}{}[{}]", items.empty() ? "" : ", ", a, l);
       out += fmt::format("{}{}({})", l ? ", " : "", function, items);
     }
     return out + "}";

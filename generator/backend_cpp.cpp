@@ -21,15 +21,14 @@ class CppBackend final : public LanguageBackend {
         declarations_);
     header.insert({{"namespace", p.ns}, {"joint_names", joint_name_lines(p.model)}});
     files.push_back({this->header(), fill("dynamics.hpp.in", header)});
-    files.push_back(
-        {source(), fill("dynamics.cpp.in",
-                        {{"banner", summary.code_banner},
-                         {"name", p.ns},
-                         {"namespace", p.ns},
-                         {"scalar", p.scalar},
-                         {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
-                         {"support_includes", summary.support_includes()},
-                         {"definitions", definitions_}})});
+    files.push_back({source(), fill("dynamics.cpp.in",
+                                    {{"banner", summary.code_banner},
+                                     {"name", p.ns},
+                                     {"namespace", p.ns},
+                                     {"scalar", p.scalar},
+                                     {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
+                                     {"support_includes", summary.support_includes()},
+                                     {"definitions", definitions_}})});
   }
 
   void add_cmake_values(std::map<std::string, std::string>& values,

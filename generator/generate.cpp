@@ -120,10 +120,9 @@ std::string banner_text(const Robot& robot, const GenerateOptions& options,
     text += fmt::format("\n  {}\n    generated: {}\n    runtime:   {}", c.algorithm,
                         to_string(c.generated), to_string(c.runtime));
     if (options.structure == Structure::Lanes || c.lane_blocks > 0)
-      text += fmt::format("\n    {} of {} operations in {} blocks of vector lanes",
-                          c.lane_operations,
-                          c.generated.total() - c.generated.sin - c.generated.cos - c.generated.fn,
-                          c.lane_blocks);
+      text += fmt::format(
+          "\n    {} of {} operations in {} blocks of vector lanes", c.lane_operations,
+          c.generated.total() - c.generated.sin - c.generated.cos - c.generated.fn, c.lane_blocks);
     else if (options.structure != Structure::Unrolled)
       text += fmt::format("\n    {} of {} link sections in {} shared functions",
                           c.shared_sections, c.sections, c.shared_functions);
@@ -474,12 +473,13 @@ constexpr const char* lie_libraries =
 /// check.
 GeneratedFile cmake_file(const PackageContext& p, const Package& package,
                          const std::string& banner) {
-  std::map<std::string, std::string> values{{"banner", commented(banner, "#")},
-                                            {"name", p.ns},
-                                            {"NAME", upper(p.ns)},
-                                            {"libraries", package.uses_lie ? fmt::format(lie_libraries, p.ns) : ""},
-                                            {"sources", ""},
-                                            {"targets", ""}};
+  std::map<std::string, std::string> values{
+      {"banner", commented(banner, "#")},
+      {"name", p.ns},
+      {"NAME", upper(p.ns)},
+      {"libraries", package.uses_lie ? fmt::format(lie_libraries, p.ns) : ""},
+      {"sources", ""},
+      {"targets", ""}};
   for (const std::unique_ptr<Backend>& backend : package.backends)
     backend->add_cmake_values(values, p);
   return {"CMakeLists.txt", fill("CMakeLists.txt.in", values)};

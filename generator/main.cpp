@@ -71,8 +71,9 @@ std::vector<Algorithm> with_constraints(std::vector<Algorithm> algorithms,
   }
   if (!listed.empty()) return algorithms;
   // derivatives on request only, as without constraints
-  const bool anchored = model.constraint_settings.kp > 0 &&
-                        std::ranges::any_of(model.constraints, [](const auto& k) { return !k.loop; });
+  const bool anchored =
+      model.constraint_settings.kp > 0 &&
+      std::ranges::any_of(model.constraints, [](const auto& k) { return !k.loop; });
   std::vector<Algorithm> out;
   for (const Algorithm& a : algorithm_names())
     if ((needs(a) && !a.ends_with("_derivatives") &&

@@ -325,13 +325,34 @@ template <class T> Sym<T> operator/(Sym<T> x, Sym<T> y) { return Sym<T>::node(gr
 template <class T> Sym<T> operator-(Sym<T> x) { return Sym<T>::node(graph<T>().unary(Op::Neg, x.id)); }
 template <class T> Sym<T> sin(Sym<T> x) { return Sym<T>::node(graph<T>().unary(Op::Sin, x.id)); }
 template <class T> Sym<T> cos(Sym<T> x) { return Sym<T>::node(graph<T>().unary(Op::Cos, x.id)); }
-template <class T> Sym<T> half_cos(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::HalfCos, x.id)); }
-template <class T> Sym<T> half_sinc(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::HalfSinc, x.id)); }
-template <class T> Sym<T> exp_c(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::ExpC, x.id)); }
-template <class T> Sym<T> exp_d(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::ExpD, x.id)); }
-template <class T> Sym<T> exp_e(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::ExpE, x.id)); }
-template <class T> Sym<T> log_alpha(Sym<T> x) { return Sym<T>::node(graph<T>().function(Function::LogAlpha, x.id)); }
-template <class T> Sym<T> log_factor(Sym<T> s2, Sym<T> c) { return Sym<T>::node(graph<T>().function(Function::LogFactor, s2.id, c.id)); }
+template <class T>
+Sym<T> half_cos(Sym<T> x) {
+  return Sym<T>::node(graph<T>().function(Function::HalfCos, x.id));
+}
+template <class T>
+Sym<T> half_sinc(Sym<T> x) {
+  return Sym<T>::node(graph<T>().function(Function::HalfSinc, x.id));
+}
+template <class T>
+Sym<T> exp_c(Sym<T> x) {
+  return Sym<T>::node(graph<T>().function(Function::ExpC, x.id));
+}
+template <class T>
+Sym<T> exp_d(Sym<T> x) {
+  return Sym<T>::node(graph<T>().function(Function::ExpD, x.id));
+}
+template <class T>
+Sym<T> exp_e(Sym<T> x) {
+  return Sym<T>::node(graph<T>().function(Function::ExpE, x.id));
+}
+template <class T>
+Sym<T> log_alpha(Sym<T> x) {
+  return Sym<T>::node(graph<T>().function(Function::LogAlpha, x.id));
+}
+template <class T>
+Sym<T> log_factor(Sym<T> s2, Sym<T> c) {
+  return Sym<T>::node(graph<T>().function(Function::LogFactor, s2.id, c.id));
+}
 
 template <class T>
 template <class Run, class Call>

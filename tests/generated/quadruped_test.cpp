@@ -54,8 +54,8 @@ Eigen::Matrix<double, nv, nv> mass_matrix(const quadruped::VectorQ& q) {
 }
 
 TEST(Quadruped, PackageIsTheExamples) {
-  // the feet's frames in the contacts' order, and only the velocity gain (contacts have no
-  // position error to act on): --baumgarte 0,30
+  // the feet's frames in the contacts' order, and only the velocity gain (a position gain would
+  // need the touchdown's anchors, contact_dynamics_anchored's): --baumgarte 0,30
   EXPECT_EQ(solo12_quadruped::model_constraint_settings.kp, 0.0);
   EXPECT_EQ(solo12_quadruped::model_constraint_settings.kd, 30.0);
   for (int i = 0; i < nfeet; ++i) {

@@ -425,8 +425,9 @@ void expect_traces_agree(const Model<double>& model, Algorithm algorithm,
   }
   // simplifying removes operations, but from a program of one per output (integrate on an arm)
   const long full_ops = count_ops(full, false).total();
-  if (full_ops > static_cast<long>(full.stored.size()))
+  if (full_ops > static_cast<long>(full.stored.size())) {
     EXPECT_LT(count_ops(simplified).total(), full_ops);
+  }
   std::mt19937_64 rng(42);
   std::vector<T> inputs(full.graph.inputs.size());
   for (int sample = 0; sample < 50; ++sample) {
@@ -440,7 +441,8 @@ void expect_traces_agree(const Model<double>& model, Algorithm algorithm,
       const T x = a[full.stored[k]], y = b[simplified.stored[k]];
       // the rewrites are exact for finite values: where a value is not (sample 0's all-zero
       // quaternions have no logarithm), both give NaN, but not always of the same sign
-      ASSERT_TRUE(same_bits(x, y) || (std::isnan(x) && std::isnan(y))) << "output entry " << k << " at sample " << sample
+      ASSERT_TRUE(same_bits(x, y) || (std::isnan(x) && std::isnan(y)))
+          << "output entry " << k << " at sample " << sample
                                    << ": runtime " << show(x) << ", simplified " << show(y);
     }
   }
@@ -503,7 +505,8 @@ std::vector<TraceCase> trace_cases() {
     for (const Algorithm& a : algorithm_names())
       for (const bool single : {false, true}) cases.push_back({robot, a, single});
   // the configuration space's functions of lie.h (Op::Fn) on a free joint and ball joints
-  for (const char* a : {"integrate", "difference", "integrate_derivatives", "difference_derivatives"})
+  for (const char* a :
+       {"integrate", "difference", "integrate_derivatives", "difference_derivatives"})
     for (const bool single : {false, true}) cases.push_back({"mjcf/ball.xml", a, single});
   return cases;
 }

@@ -471,7 +471,8 @@ Placements contact_placements(const Model<double>& model, const Vector& q) {
   for (const Constraint<double>& c : model.constraints)
     fm.frames.push_back({c.name, c.body_a, c.placement_a});
   Workspace<double> ws(fm);
-  Placements x{std::vector<double>(9 * fm.frames.size()), std::vector<double>(3 * fm.frames.size())};
+  const std::size_t nf = fm.frames.size();
+  Placements x{std::vector<double>(9 * nf), std::vector<double>(3 * nf)};
   frame_placements<double>(fm, ws, span(q), x.R, x.p);
   return x;
 }
@@ -548,10 +549,10 @@ TEST_P(ContactTest, AnchoredDerivativesMatchCentralDifferencesInMpfr) {
   const Model<double> model = load(GetParam(), settings);
   test::Random rng(61);
   double worst = 0;
-  for (const Sample& s : random_samples(model, 61, 1))
-    worst = std::max(worst, derivative_error(model, s,
-                                             anchors_of(model, contact_placements(
-                                                                   model, nearby(model, s.q, rng)))));
+  for (const Sample& s : random_samples(model, 61, 1)) {
+    const Vector anchors = anchors_of(model, contact_placements(model, nearby(model, s.q, rng)));
+    worst = std::max(worst, derivative_error(model, s, anchors));
+  }
   std::cout << GetParam().name << " anchored: derivatives' error over eps cond " << worst << "\n";
   EXPECT_LE(worst, 1000);
 }
