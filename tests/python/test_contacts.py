@@ -1,6 +1,8 @@
 """The Python module's contact_dynamics and impulse_dynamics (dyngen --python --contacts) against
 the C++ runtime (dyngen eval --contacts), bit for bit, and the constraint forces against the
-module's own rnea: rnea(q, v, qdd) = tau + J^T lambda, with J from dyngen eval --frames.
+module's own rnea: rnea(q, v, qdd) = tau + J^T lambda, with J from dyngen eval --frames; where the
+module has them, contact_dynamics_derivatives against the runtime's and against central
+differences of the module's contact_dynamics.
 
 Run by ctest (tests/python/CMakeLists.txt, run_module_test.cmake) beside test_module.py, with
 DYNGEN_CONTACTS the --contacts the module was generated with.
@@ -12,6 +14,7 @@ import shlex
 import subprocess
 
 import numpy as np
+import pytest
 
 d = importlib.import_module(os.environ["DYNGEN_MODULE"])
 contacts = os.environ["DYNGEN_CONTACTS"]
@@ -77,3 +80,29 @@ def test_forces_satisfy_the_dynamics_through_the_modules_rnea():
         residual = d.rnea(q[s], v[s], qdd[s]) - tau[s] - J.T @ lam[s]
         scale = np.linalg.norm(tau[s]) + np.linalg.norm(J.T @ lam[s])
         assert np.linalg.norm(residual) <= (1e-4 if d.dtype == np.float32 else 1e-12) * scale
+
+
+@pytest.mark.skipif(not hasattr(d, "contact_dynamics_derivatives"),
+                    reason="the module has no contact_dynamics_derivatives")
+def test_derivatives_match_the_runtime_and_central_differences():
+    q, v, tau = states(2, seed=7)
+    given = [{"q": q[s], "v": v[s], "tau": tau[s]} for s in range(len(q))]
+    results = runtime(given, "--derivatives")["results"]
+    mine = d.contact_dynamics_derivatives(q, v, tau)
+    keys = ("dqdd_dq", "dqdd_dv", "dqdd_dtau", "dlambda_dq", "dlambda_dv", "dlambda_dtau")
+    for s, r in enumerate(results):
+        for x, key in zip(mine, keys):
+            assert np.array_equal(x[s], np.asarray(r[key]).reshape(x[s].shape)), key
+    # fixed base: every column is a plain partial derivative; h = 1e-6 leaves about 1e-8 (a
+    # welded arm's qdd does not depend on tau: its entries are rounding, against a scale of 1)
+    h = 1e-6
+    for k, x in enumerate((q, v, tau)):
+        for c in range(d.nv):
+            up, down = ([y.copy() for y in (q, v, tau)] for _ in range(2))
+            up[k][:, c] += h
+            down[k][:, c] -= h
+            (qdd_up, lam_up), (qdd_down, lam_down) = d.contact_dynamics(*up), d.contact_dynamics(*down)
+            for got, fd in ((mine[k], (qdd_up - qdd_down) / (2 * h)),
+                            (mine[3 + k], (lam_up - lam_down) / (2 * h))):
+                scale = max(1.0, np.max(np.abs(got)))
+                assert np.max(np.abs(got[:, :, c] - fd)) <= 1e-6 * scale, (keys[k], c)
