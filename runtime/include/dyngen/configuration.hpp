@@ -40,6 +40,27 @@ Vec3<S> quaternion_log(const S* quat0, const S* quat1, S& t2) {
   return scale(rv, k);
 }
 
+/// V(w) u = u + (1 - cos t)/t^2 w x u + (t - sin t)/t^3 w x (w x u): the translation of the
+/// SE(3) exponential of (u, w), t^2 = |w|^2; (1 - cos t)/t^2 = 2 (sin(t/2)/t)^2 keeps every digit.
+template <class S>
+Vec3<S> se3_translation(const Vec3<S>& u, const Vec3<S>& w, const S& t2) {
+  const S h = half_sinc(t2);
+  const Vec3<S> wu = cross(w, u);
+  return u + scale(wu, S(2) * h * h) + scale(cross(w, wu), exp_c(t2));
+}
+
+/// log(M0^-1 M1) of a free joint's poses a and b (position, then quaternion): the twist (u, w),
+/// w = log(R0^T R1) the shorter way round and u = V(w)^-1 R0^T (p1 - p0), V^-1 = 1 - [w]/2 +
+/// (1 - (t/2) cot(t/2))/t^2 [w]^2; |w|^2 in t2.
+template <class S>
+Motion<S> se3_log(const S* a, const S* b, S& t2) {
+  const Vec3<S> w = quaternion_log(&a[3], &b[3], t2);
+  const Vec3<S> dp{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const Vec3<S> p = mul_T(quaternion_rotation(a[3], a[4], a[5], a[6]), dp);
+  const Vec3<S> wp = cross(w, p);
+  return {w, p - scale(wp, S(1) / S(2)) + scale(cross(w, wp), log_alpha(t2))};
+}
+
 /// [w], the cross-product matrix.
 template <class S>
 Mat3<S> skew(const Vec3<S>& w) {
@@ -117,11 +138,8 @@ void integrate(const Model<S>& model, std::span<const S> q, std::span<const S> d
     }
     const Vec3<S> w{di[k], di[k + 1], di[k + 2]};
     const S t2 = dot(w, w);
-    if (k > 0) {  // p + R V(w) u; (1 - cos t)/t^2 = 2 (sin(t/2)/t)^2 keeps every digit
-      const Vec3<S> u{di[0], di[1], di[2]};
-      const S h = half_sinc(t2);
-      const Vec3<S> wu = cross(w, u);
-      const Vec3<S> Vu = u + scale(wu, S(2) * h * h) + scale(cross(w, wu), exp_c(t2));
+    if (k > 0) {  // p + R V(w) u
+      const Vec3<S> Vu = detail::se3_translation(Vec3<S>{di[0], di[1], di[2]}, w, t2);
       const Vec3<S> p =
           Vec3<S>{qi[0], qi[1], qi[2]} + mul(quaternion_rotation(qi[3], qi[4], qi[5], qi[6]), Vu);
       o[0] = p.x, o[1] = p.y, o[2] = p.z;
@@ -148,15 +166,14 @@ void difference(const Model<S>& model, std::span<const S> q0, std::span<const S>
       continue;
     }
     S t2;
-    const Vec3<S> w = detail::quaternion_log(&a[k], &b[k], t2);
-    o[k] = w.x, o[k + 1] = w.y, o[k + 2] = w.z;
-    if (k > 0) {
-      const Vec3<S> dp{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-      const Vec3<S> p = mul_T(quaternion_rotation(a[3], a[4], a[5], a[6]), dp);
-      const Vec3<S> wp = cross(w, p);
-      const Vec3<S> u = p - scale(wp, S(1) / S(2)) + scale(cross(w, wp), log_alpha(t2));
-      o[0] = u.x, o[1] = u.y, o[2] = u.z;
+    if (k == 0) {
+      const Vec3<S> w = detail::quaternion_log(a, b, t2);
+      o[0] = w.x, o[1] = w.y, o[2] = w.z;
+      continue;
     }
+    const Motion<S> d = detail::se3_log(a, b, t2);
+    o[0] = d.lin.x, o[1] = d.lin.y, o[2] = d.lin.z;
+    o[3] = d.ang.x, o[4] = d.ang.y, o[5] = d.ang.z;
   }
 }
 
@@ -189,8 +206,7 @@ void integrate_derivatives(const Model<S>& model, std::span<const S> q, std::spa
     detail::put_block(dv, n, j + k, j + k, Jr);
     if (k == 0) continue;
     const Vec3<S> u{v[j], v[j + 1], v[j + 2]};
-    const Vec3<S> wu = cross(w, u);
-    const Vec3<S> p = u + scale(wu, b) + scale(cross(w, wu), exp_c(t2));
+    const Vec3<S> p = detail::se3_translation(u, w, t2);
     detail::put_block(dq, n, j, j, RT);
     detail::put_block(dq, n, j, j + 3, detail::scaled(mul_skew(RT, p), S(-1)));
     detail::put_block(dv, n, j, j, Jr);
@@ -220,20 +236,17 @@ void difference_derivatives(const Model<S>& model, std::span<const S> q,
       continue;
     }
     S t2;
-    const Vec3<S> w = detail::quaternion_log(&a[k], &b[k], t2);
     if (k == 0) {
+      const Vec3<S> w = detail::quaternion_log(a, b, t2);
       const S alpha = log_alpha(t2);
       detail::put_block(dq, n, j, j,
                         detail::scaled(detail::so3_matrix(w, S(-1) / S(2), alpha), S(-1)));
       detail::put_block(dq_target, n, j, j, detail::so3_matrix(w, S(1) / S(2), alpha));
       continue;
     }
-    const Vec3<S> dp{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const Vec3<S> p = mul_T(quaternion_rotation(a[3], a[4], a[5], a[6]), dp);
-    const Vec3<S> wp = cross(w, p);
-    const Vec3<S> u = p - scale(wp, S(1) / S(2)) + scale(cross(w, wp), log_alpha(t2));
-    detail::put_se3_log_jacobian(dq, n, j, u, w, t2, S(-1));
-    detail::put_se3_log_jacobian(dq_target, n, j, u, w, t2, S(1));
+    const Motion<S> d = detail::se3_log(a, b, t2);
+    detail::put_se3_log_jacobian(dq, n, j, d.lin, d.ang, t2, S(-1));
+    detail::put_se3_log_jacobian(dq_target, n, j, d.lin, d.ang, t2, S(1));
   }
 }
 
