@@ -58,7 +58,8 @@ void run_call(const KernelRecord& call, const std::vector<std::vector<T>>& in,
     kernels::neg_product(call.ints.at(0), t.at(0).data(), t.at(1).data(), in[0].data(),
                          in[1].data(), out[0].data());
   else if (call.kernel == "constrained_columns" && in.size() == 6 && out.size() == 3)
-    kernels::constrained_columns(call.ints.at(0), call.ints.at(1), t.at(0).data(), in[0].data(),
+    kernels::constrained_columns(call.ints.at(0), call.ints.at(1), t.at(0).data(), t.at(1).data(),
+                                 t.at(2).data(), t.at(3).data(), t.at(4).data(), in[0].data(),
                                  in[1].data(), in[2].data(), in[3].data(), in[4].data(),
                                  in[5].data(), out[0].data(), out[1].data(), out[2].data());
   else

@@ -213,6 +213,44 @@ TEST_P(ContactTest, LoadsTheContacts) {
   }
 }
 
+/// Whether W^T = L^-T J^T, after contact_dynamics at a random state, is +-0 off the columns
+/// that kernels::constrained_columns' tables (Workspace::constraint_paths) give each row, and
+/// whether the tables of rows per column are their transpose.
+void expect_w_within_its_tables(const Model<double>& model) {
+  Workspace<double> ws(model);
+  const Sample s = random_samples(model, 97, 1)[0];
+  Vector qdd(model.nv), lam(model.nc);
+  contact_dynamics<double>(model, ws, span(s.q), span(s.v), span(s.tau), span(qdd), span(lam));
+  const int n = model.nv;
+  int nonzero = 0, listed = 0;
+  for (int r = 0; r < model.nc; ++r)
+    for (int k = 0; k < n; ++k) {
+      const int* begin = &ws.w_columns[ws.w_begin[r]];
+      const int* end = &ws.w_columns[0] + ws.w_begin[r + 1];
+      const bool in_table = std::find(begin, end, k) != end;
+      const int* rows_begin = &ws.w_rows[0] + ws.w_rows_begin[k];
+      const int* rows_end = &ws.w_rows[0] + ws.w_rows_begin[k + 1];
+      EXPECT_EQ(in_table, std::find(rows_begin, rows_end, r) != rows_end) << r << ", " << k;
+      if (!in_table) EXPECT_EQ(ws.Wt[row_major(n, r, k)], 0.0) << "row " << r << ", column " << k;
+      nonzero += ws.Wt[row_major(n, r, k)] != 0.0;
+      listed += in_table;
+    }
+  EXPECT_GT(nonzero, 0);
+  std::cout << "W: " << nonzero << " non-zero entries, " << listed << " in the tables, of "
+            << model.nc * n << "\n";
+}
+
+TEST_P(ContactTest, WIsZeroOffItsTables) { expect_w_within_its_tables(load(GetParam())); }
+
+// A loop between two legs: W's row is non-zero along both paths, which share the base.
+TEST(LoopClosure, WIsZeroOffItsTablesAcrossLegs) {
+  Model<double> model = load(contact_cases()[0]);
+  const int fl = model.constraints[0].body_a, hr = model.constraints[3].body_a;
+  const Xform<double> at{rotation_from_rpy(0.3, -0.2, 0.5), {0.1, -0.05, 0.2}};
+  set_constraints<double>(model, {{"loop", fl, at, hr, at, true, true}}, {});
+  expect_w_within_its_tables(model);
+}
+
 // M qdd + h = tau + J^T lam and J qdd + Jdot v = 0, with RNEA for the first.
 TEST_P(ContactTest, SatisfiesTheDefiningEquations) {
   const Model<double> model = load(GetParam());

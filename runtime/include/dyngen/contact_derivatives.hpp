@@ -5,9 +5,11 @@
 //   J dqdd            = R2 = -d(J a + Jdot v + kd J v + kp e) / dx at a = qdd
 // (for tau: R1 = 1, R2 = 0), the same system as the dynamics' own, solved column by column by
 // the same Schur complement (kernels::constrained_columns: compact loops where the unrolled
-// columns would fill the instruction cache): y = L^-T R1, dlam = T (R2 - W D^-1 y), dqdd =
-// L^-1 D^-1 (y + W^T dlam), with T the map from the right side to lam of contact_dynamics'
-// proximal iterations (A^-1 to (mu / s)^3). d rnea / dx comes from rnea_derivatives; the
+// columns would fill the instruction cache, over the rows and columns where W can be non-zero):
+// y = L^-T R1, dlam = T (R2 - W D^-1 y), dqdd = L^-1 D^-1 (y + W^T dlam), with T the map from
+// the right side to lam of contact_dynamics' proximal iterations (A^-1 to (mu / s)^3). For tau
+// the columns are the inverse's own blocks, in closed form (tau_columns: half the work of the
+// columns, the product being symmetric). d rnea / dx comes from rnea_derivatives; the
 // constraints' terms from the motion of each column s_k of the constraint's path in base
 // coordinates (after Carpentier & Mansard, RSS 2018, sec. III): moving q_k turns everything
 // downstream of s_k's joint about s_k,
@@ -122,7 +124,9 @@ void add_constraint_side(const Model<S>& model, const Workspace<S>& ws, const Co
 
 /// ws.lam_map = T, the map from right side to lam of proximal_solve's iterations: with B =
 /// (A + mu)^-1 and A B = 1 - mu B, lam_{k+1} = lam_k + B (r - A lam_k) = B r + mu B lam_k, so
-/// T_1 = B and T_{k+1} = B + mu B T_k (B + mu B^2 + mu^2 B^3 for 3), column by column.
+/// T_1 = B and T_{k+1} = B + mu B T_k (B + mu B^2 + mu^2 B^3 for 3). B's columns by its
+/// factor; each T_{k+1}, a polynomial in the symmetric B, is symmetric: column j's rows up to j,
+/// mirrored into row j (whose columns before j are done, and T_k's column j is not yet read).
 template <class S>
 void proximal_map(const Model<S>& model, Workspace<S>& ws) {
   const int m = model.nc;
@@ -137,13 +141,44 @@ void proximal_map(const Model<S>& model, Workspace<S>& ws) {
   for (int it = 1; it < proximal_iterations; ++it)
     for (int j = 0; j < m; ++j) {
       S* x = ws.lam_step.data();
-      for (int i = 0; i < m; ++i) {
+      for (int i = 0; i <= j; ++i) {
         S sum{};
         for (int k = 0; k < m; ++k)
           sum = sum + ws.A_inverse[row_major(m, i, k)] * ws.lam_map[row_major(m, k, j)];
         x[i] = ws.A_inverse[row_major(m, i, j)] + mu * sum;
       }
-      for (int i = 0; i < m; ++i) ws.lam_map[row_major(m, i, j)] = x[i];
+      for (int i = 0; i <= j; ++i)
+        ws.lam_map[row_major(m, i, j)] = ws.lam_map[row_major(m, j, i)] = x[i];
+    }
+}
+
+/// The columns of tau (R1 = 1, R2 = 0) in closed form: with Y = J M^-1 (Y^T's columns L^-1
+/// D^-1 W^T, after ltdl_finish_solve), dlam/dtau = -T Y and dqdd/dtau = M^-1 - Y^T T Y, whose
+/// upper triangle is mirrored (T is symmetric).
+template <class S>
+void tau_columns(const Model<S>& model, Workspace<S>& ws, std::span<S> dqdd_dtau,
+                 std::span<S> dlam_dtau) {
+  TraceHook<S>::enter(-1, Pass::Product);
+  const int n = model.nv, m = model.nc;
+  const int* parent = ws.column_parent.data();
+  S* Y = ws.lam_columns.data();
+  for (int s = 0; s < m; ++s) {
+    for (int k = 0; k < n; ++k) Y[row_major(n, s, k)] = ws.Wt[row_major(n, s, k)];
+    ltdl_finish_solve<S>(n, parent, ws.H, ws.column_Dinv, &Y[row_major(n, s, 0)]);
+  }
+  for (int s = 0; s < m; ++s)
+    for (int c = 0; c < n; ++c) {
+      S sum{};
+      for (int t = 0; t < m; ++t) sum = sum + ws.lam_map[row_major(m, s, t)] * Y[row_major(n, t, c)];
+      dlam_dtau[row_major(n, s, c)] = -sum;
+    }
+  ltdl_inverse<S>(n, parent, ws.H, ws.column_Dinv, ws.Linv, dqdd_dtau);
+  TraceHook<S>::enter(-1, Pass::Product);
+  for (int i = 0; i < n; ++i)
+    for (int j = i; j < n; ++j) {
+      S sum = dqdd_dtau[row_major(n, i, j)];
+      for (int s = 0; s < m; ++s) sum = sum + Y[row_major(n, s, i)] * dlam_dtau[row_major(n, s, j)];
+      dqdd_dtau[row_major(n, i, j)] = dqdd_dtau[row_major(n, j, i)] = sum;
     }
 }
 
@@ -155,14 +190,18 @@ void constrained_columns(const Model<S>& model, Workspace<S>& ws, std::span<S> d
   TraceHook<S>::enter(-1, Pass::Product);
   const int n = model.nv, m = model.nc;
   const int ints[] = {n, m};
-  const std::span<const int> tables[] = {ws.column_parent};
-  const std::string_view names[] = {"parent", "L", "Dinv", "Wt", "T", "R1", "R2",
-                                    "dqdd", "dlam", "r"};
+  const std::span<const int> tables[] = {ws.column_parent, ws.w_begin, ws.w_columns,
+                                         ws.w_rows_begin, ws.w_rows};
+  const std::string_view names[] = {"parent", "w_begin", "w_columns", "w_rows_begin",
+                                    "w_rows", "L", "Dinv", "Wt", "T", "R1", "R2", "dqdd",
+                                    "dlam", "r"};
   const std::span<const S> inputs[] = {ws.H, ws.column_Dinv, ws.Wt, ws.lam_map, dqdd, dlam};
   const std::span<S> outputs[] = {dqdd, dlam, ws.lam_columns};
   run_kernel<S>({"constrained_columns", ints, tables, inputs, outputs, names},
                 [&](auto in, auto out) {
-                  kernels::constrained_columns(n, m, ws.column_parent.data(), in[0].data(),
+                  kernels::constrained_columns(n, m, ws.column_parent.data(), ws.w_begin.data(),
+                                               ws.w_columns.data(), ws.w_rows_begin.data(),
+                                               ws.w_rows.data(), in[0].data(),
                                                in[1].data(), in[2].data(), in[3].data(),
                                                in[4].data(), in[5].data(), out[0].data(),
                                                out[1].data(), out[2].data());
@@ -184,7 +223,6 @@ void contact_dynamics_derivatives(const Model<S>& model, Workspace<S>& ws, std::
                                   std::span<S> dqdd_dtau, std::span<S> dlam_dq,
                                   std::span<S> dlam_dv, std::span<S> dlam_dtau,
                                   std::span<const S> anchors = {}) {
-  const int n = model.nv;
   contact_dynamics<S>(model, ws, q, v, tau, ws.constrained_qdd, ws.lam, anchors);
   TraceHook<S>::enter(-1, Pass::Constraints);
   detail::proximal_map(model, ws);
@@ -209,13 +247,9 @@ void contact_dynamics_derivatives(const Model<S>& model, Workspace<S>& ws, std::
                                      R, dqdd_dq, dlam_dq, dlam_dv);
     r0 += constraint_rows(k);
   }
-  // d tau: R1 = 1, R2 = 0
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) dqdd_dtau[row_major(n, i, j)] = S(i == j ? 1 : 0);
-  for (std::size_t e = 0; e < dlam_dtau.size(); ++e) dlam_dtau[e] = S(0);
   detail::constrained_columns<S>(model, ws, dqdd_dq, dlam_dq);
   detail::constrained_columns<S>(model, ws, dqdd_dv, dlam_dv);
-  detail::constrained_columns<S>(model, ws, dqdd_dtau, dlam_dtau);
+  detail::tau_columns<S>(model, ws, dqdd_dtau, dlam_dtau);
 }
 
 }  // namespace dyngen

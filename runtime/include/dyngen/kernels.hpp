@@ -211,12 +211,17 @@ DYNGEN_KERNEL void neg_product(int n, const int* rows_begin, const int* rows, co
 /// the Schur complement over M = L^T D L: for every column c of R1 (n x n) and R2 (m x n),
 /// row-major, y = L^-T R1_c, r = R2_c - W D^-1 y, dlam_c = T r and dqdd_c = L^-1 D^-1 (y + W^T
 /// dlam_c), with W^T (m x n) and T (m x m) row-major and L below the diagonal of M's factor (n x
-/// n, along the columns' parents). The innermost loops run along a row, over the columns, which
-/// are independent and contiguous. dqdd may be R1 and dlam R2 (in place); r is scratch (m x n).
+/// n, along the columns' parents). Row s of W is zero but in the columns
+/// w_columns[w_begin[s] .. w_begin[s + 1]) (its constraint's paths to the root), and column k
+/// in the rows w_rows[w_rows_begin[k] .. w_rows_begin[k + 1]), both increasing. The innermost
+/// loops run along a row, over the columns, which are independent and contiguous. dqdd may be
+/// R1 and dlam R2 (in place); r is scratch (m x n).
 template <class S>
-DYNGEN_KERNEL void constrained_columns(int n, int m, const int* parent, const S* L, const S* Dinv,
-                                       const S* Wt, const S* T, const S* R1, const S* R2,
-                                       S* dqdd, S* dlam, S* r) {
+DYNGEN_KERNEL void constrained_columns(int n, int m, const int* parent, const int* w_begin,
+                                       const int* w_columns, const int* w_rows_begin,
+                                       const int* w_rows, const S* L, const S* Dinv, const S* Wt,
+                                       const S* T, const S* R1, const S* R2, S* dqdd, S* dlam,
+                                       S* r) {
   S* y = dqdd;
   for (int e = 0; e < n * n; ++e) y[e] = R1[e];
   for (int k = n - 1; k >= 0; --k)  // y = L^-T y
@@ -224,7 +229,8 @@ DYNGEN_KERNEL void constrained_columns(int n, int m, const int* parent, const S*
       for (int c = 0; c < n; ++c) y[i * n + c] = y[i * n + c] - L[k * n + i] * y[k * n + c];
   for (int s = 0; s < m; ++s) {  // r = R2 - W D^-1 y
     for (int c = 0; c < n; ++c) r[s * n + c] = R2[s * n + c];
-    for (int k = 0; k < n; ++k) {
+    for (int e = w_begin[s]; e < w_begin[s + 1]; ++e) {
+      const int k = w_columns[e];
       const S w = Wt[s * n + k] * Dinv[k];
       for (int c = 0; c < n; ++c) r[s * n + c] = r[s * n + c] - w * y[k * n + c];
     }
@@ -235,8 +241,10 @@ DYNGEN_KERNEL void constrained_columns(int n, int m, const int* parent, const S*
       for (int c = 0; c < n; ++c) dlam[s * n + c] = dlam[s * n + c] + T[s * m + t] * r[t * n + c];
   }
   for (int k = 0; k < n; ++k) {  // y = D^-1 (y + W^T dlam)
-    for (int s = 0; s < m; ++s)
+    for (int e = w_rows_begin[k]; e < w_rows_begin[k + 1]; ++e) {
+      const int s = w_rows[e];
       for (int c = 0; c < n; ++c) y[k * n + c] = y[k * n + c] + Wt[s * n + k] * dlam[s * n + c];
+    }
     for (int c = 0; c < n; ++c) y[k * n + c] = y[k * n + c] * Dinv[k];
   }
   for (int k = 0; k < n; ++k)  // y = L^-1 y

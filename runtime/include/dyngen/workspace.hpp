@@ -104,6 +104,7 @@ struct Workspace {
     A_inverse.resize(nc * nc);
     lam_columns.resize(Jc.size());
     constrained_qdd.resize(static_cast<std::size_t>(model.nv));
+    constraint_paths(model);
     // the rows of d tau that can be non-zero in column c: c's path to the root, then its
     // subtree; in d tau / dq none for a root joint's translations, which carry the whole robot
     // through uniform gravity and change no force in the bodies' frames (rnea_derivatives gives
@@ -123,6 +124,36 @@ struct Workspace {
       }
     if (!model.mimic.empty()) couple_buffers(model);
     has_matrix_buffers = true;
+  }
+
+  /// w_begin, w_columns, w_rows_begin and w_rows: where W^T = L^-T J^T can be non-zero. J's row
+  /// is zero off the columns of the joints on its constraint's paths to the root, and L^-T
+  /// carries it along the columns' parents only; with mimic joints (M factorised as dense),
+  /// everywhere.
+  void constraint_paths(const Model<S>& model) {
+    const int n = model.nv;
+    w_begin.assign(1, 0);
+    std::vector<int> count(static_cast<std::size_t>(n), 0);
+    for (const Constraint<S>& k : model.constraints) {
+      std::vector<char> on(static_cast<std::size_t>(n), model.mimic.empty() ? 0 : 1);
+      for (const int b : {k.body_a, k.body_b})
+        for (int j = b; j >= 0; j = model.parent[j])
+          for (int c = model.v_index[j]; c < model.v_index[j] + joint_nv(model.joint_type[j]); ++c)
+            on[c] = 1;
+      for (int c = n - 1; c >= 0; --c)
+        if (on[c] && column_parent[c] >= 0) on[column_parent[c]] = 1;
+      for (int r = 0; r < constraint_rows(k); ++r) {
+        for (int c = 0; c < n; ++c)
+          if (on[c]) w_columns.push_back(c), ++count[c];
+        w_begin.push_back(static_cast<int>(w_columns.size()));
+      }
+    }
+    w_rows_begin.assign(1, 0);
+    for (int c = 0; c < n; ++c) w_rows_begin.push_back(w_rows_begin.back() + count[c]);
+    w_rows.resize(w_columns.size());
+    std::vector<int> next(w_rows_begin.begin(), w_rows_begin.end() - 1);
+    for (int s = 0; s < model.nc; ++s)
+      for (int e = w_begin[s]; e < w_begin[s + 1]; ++e) w_rows[next[w_columns[e]]++] = s;
   }
 
   /// A robot with mimic joints: every column's row of d tau may be non-zero (its columns couple
@@ -205,6 +236,10 @@ struct Workspace {
   // contact_derivatives.hpp: the solution qdd (nv) and lam (nc), the solve's map T from right
   // side to lam and (A + mu)^-1 (nc x nc), and the columns' right sides (nc x nv)
   std::vector<S> constrained_qdd, lam, lam_map, A_inverse, lam_columns;
+  // kernels::constrained_columns' columns where each row of W can be non-zero and, per column,
+  // those rows (constraint_paths)
+  std::vector<int> w_begin, w_columns;   // [nc + 1], [their count] if nv <= max_matrix_nv
+  std::vector<int> w_rows_begin, w_rows;  // [nv + 1], [the same count] if nv <= max_matrix_nv
   // kernels::neg_product's rows of d tau that can be non-zero, per column, of d tau / dq [0]
   // and of d tau / dv [1]
   std::vector<int> product_begin[2];     // [nv + 1] if nv <= max_matrix_nv
