@@ -62,6 +62,9 @@ void run_call(const KernelRecord& call, const std::vector<std::vector<T>>& in,
                                  t.at(2).data(), t.at(3).data(), t.at(4).data(), in[0].data(),
                                  in[1].data(), in[2].data(), in[3].data(), in[4].data(),
                                  in[5].data(), out[0].data(), out[1].data(), out[2].data());
+  else if (call.kernel == "inverse_blocks" && in.size() == 3 && out.size() == 2)
+    kernels::inverse_blocks(call.ints.at(0), call.ints.at(1), in[0].data(), in[1].data(),
+                            in[2].data(), out[0].data(), out[1].data());
   else
     throw std::logic_error("internal error: no range evaluation of kernel " + call.kernel);
 }

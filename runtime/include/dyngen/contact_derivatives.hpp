@@ -153,33 +153,28 @@ void proximal_map(const Model<S>& model, Workspace<S>& ws) {
 }
 
 /// The columns of tau (R1 = 1, R2 = 0) in closed form: with Y = J M^-1 (Y^T's columns L^-1
-/// D^-1 W^T, after ltdl_finish_solve), dlam/dtau = -T Y and dqdd/dtau = M^-1 - Y^T T Y, whose
-/// upper triangle is mirrored (T is symmetric).
+/// D^-1 W^T, after ltdl_finish_solve), dlam/dtau = -T Y and dqdd/dtau = M^-1 - Y^T T Y
+/// (kernels::inverse_blocks; symmetric, as T is).
 template <class S>
 void tau_columns(const Model<S>& model, Workspace<S>& ws, std::span<S> dqdd_dtau,
                  std::span<S> dlam_dtau) {
-  TraceHook<S>::enter(-1, Pass::Product);
   const int n = model.nv, m = model.nc;
   const int* parent = ws.column_parent.data();
+  ltdl_inverse<S>(n, parent, ws.H, ws.column_Dinv, ws.Linv, ws.dtau_dq);  // M^-1
+  TraceHook<S>::enter(-1, Pass::Product);
   S* Y = ws.lam_columns.data();
   for (int s = 0; s < m; ++s) {
     for (int k = 0; k < n; ++k) Y[row_major(n, s, k)] = ws.Wt[row_major(n, s, k)];
     ltdl_finish_solve<S>(n, parent, ws.H, ws.column_Dinv, &Y[row_major(n, s, 0)]);
   }
-  for (int s = 0; s < m; ++s)
-    for (int c = 0; c < n; ++c) {
-      S sum{};
-      for (int t = 0; t < m; ++t) sum = sum + ws.lam_map[row_major(m, s, t)] * Y[row_major(n, t, c)];
-      dlam_dtau[row_major(n, s, c)] = -sum;
-    }
-  ltdl_inverse<S>(n, parent, ws.H, ws.column_Dinv, ws.Linv, dqdd_dtau);
-  TraceHook<S>::enter(-1, Pass::Product);
-  for (int i = 0; i < n; ++i)
-    for (int j = i; j < n; ++j) {
-      S sum = dqdd_dtau[row_major(n, i, j)];
-      for (int s = 0; s < m; ++s) sum = sum + Y[row_major(n, s, i)] * dlam_dtau[row_major(n, s, j)];
-      dqdd_dtau[row_major(n, i, j)] = dqdd_dtau[row_major(n, j, i)] = sum;
-    }
+  const int ints[] = {n, m};
+  const std::string_view names[] = {"T", "Y", "Minv", "dqdd", "dlam"};
+  const std::span<const S> inputs[] = {ws.lam_map, ws.lam_columns, ws.dtau_dq};
+  const std::span<S> outputs[] = {dqdd_dtau, dlam_dtau};
+  run_kernel<S>({"inverse_blocks", ints, {}, inputs, outputs, names}, [&](auto in, auto out) {
+    kernels::inverse_blocks(n, m, in[0].data(), in[1].data(), in[2].data(), out[0].data(),
+                            out[1].data());
+  });
 }
 
 /// The columns of the system above, in place: on entry dqdd holds R1 and dlam R2, on return the

@@ -252,5 +252,28 @@ DYNGEN_KERNEL void constrained_columns(int n, int m, const int* parent, const in
       for (int c = 0; c < n; ++c) y[k * n + c] = y[k * n + c] - L[k * n + i] * y[i * n + c];
 }
 
+/// The tau columns of contact_dynamics_derivatives (contact_derivatives.hpp's tau_columns) from
+/// Y = J M^-1 (m x n), T (m x m) and M^-1 (n x n), all row-major: dlam = -T Y (m x n) and dqdd =
+/// M^-1 + Y^T dlam (n x n), symmetric: each row from the diagonal on, mirrored into its column.
+/// The innermost loops run along rows.
+template <class S>
+DYNGEN_KERNEL void inverse_blocks(int n, int m, const S* T, const S* Y, const S* Minv, S* dqdd,
+                                  S* dlam) {
+  for (int s = 0; s < m; ++s) {
+    S* row = dlam + s * n;
+    for (int c = 0; c < n; ++c) row[c] = S(0);
+    for (int t = 0; t < m; ++t)
+      for (int c = 0; c < n; ++c) row[c] = row[c] + T[s * m + t] * Y[t * n + c];
+    for (int c = 0; c < n; ++c) row[c] = -row[c];
+  }
+  for (int i = 0; i < n; ++i) {
+    S* row = dqdd + i * n;
+    for (int j = i; j < n; ++j) row[j] = Minv[i * n + j];
+    for (int s = 0; s < m; ++s)
+      for (int j = i; j < n; ++j) row[j] = row[j] + Y[s * n + i] * dlam[s * n + j];
+    for (int j = i + 1; j < n; ++j) dqdd[j * n + i] = row[j];
+  }
+}
+
 }  // namespace kernels
 }  // namespace dyngen
