@@ -231,7 +231,9 @@ void expect_w_within_its_tables(const Model<double>& model) {
       const int* rows_begin = &ws.w_rows[0] + ws.w_rows_begin[k];
       const int* rows_end = &ws.w_rows[0] + ws.w_rows_begin[k + 1];
       EXPECT_EQ(in_table, std::find(rows_begin, rows_end, r) != rows_end) << r << ", " << k;
-      if (!in_table) EXPECT_EQ(ws.Wt[row_major(n, r, k)], 0.0) << "row " << r << ", column " << k;
+      if (!in_table) {
+        EXPECT_EQ(ws.Wt[row_major(n, r, k)], 0.0) << "row " << r << ", column " << k;
+      }
       nonzero += ws.Wt[row_major(n, r, k)] != 0.0;
       listed += in_table;
     }
