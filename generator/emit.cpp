@@ -776,8 +776,9 @@ std::string emit_joint_trig(const Model<double>& model, bool single_precision,
 
 std::string emit_trig_fill(const Model<double>& model, bool single_precision,
                            const std::vector<bool>& angles, const Dialect& dialect) {
-  if (angles == revolute_angles(model) ||
-      std::find(angles.begin(), angles.end(), true) == angles.end())
+  if (std::find(angles.begin(), angles.end(), true) == angles.end())
+    return fmt::format("    {}  // no angle is read\n", dialect.zero_trig());
+  if (angles == revolute_angles(model))
     return fmt::format("    {}(q, {});\n", dialect.joint_trig(), dialect.trig_argument());
   std::string out = "    // the angles this function reads\n";
   return out.append(sincos_calls(model, angles, single_precision, "trig.", dialect));

@@ -180,6 +180,8 @@ class Dialect {
   /// The _trig functions' parameter, and how f passes its trig to f_trig.
   virtual std::string trig_parameter() const { return "const " + trig_type() + "& trig"; }
   virtual const char* trig_argument() const { return "trig"; }
+  /// f's trig when f_trig reads no angle: zeros, so that no sin or cos runs for nothing.
+  virtual std::string zero_trig() const { return "trig = " + trig_type() + "{};"; }
 
   // ---- compiling
   /// The language's name for people ("C++") and in --lang ("c++").

@@ -14866,7 +14866,7 @@ void integrate_batch(const double q[nq * lanes], const double v[nv * lanes],
                      double q_plus[nq * lanes]) noexcept
 {
     JointTrigBatch trig;
-    joint_trig_batch(q, trig);
+    trig = JointTrigBatch{};  // no angle is read
     integrate_batch_trig(q, trig, v, q_plus);
 }
 
@@ -14936,7 +14936,7 @@ void difference_batch(const double q[nq * lanes], const double q_target[nq * lan
                       double delta[nv * lanes]) noexcept
 {
     JointTrigBatch trig;
-    joint_trig_batch(q, trig);
+    trig = JointTrigBatch{};  // no angle is read
     difference_batch_trig(q, trig, q_target, delta);
 }
 
@@ -14989,7 +14989,7 @@ void integrate_derivatives_batch(const double q[nq * lanes], const double v[nv *
                                  double dintegrate_dv[nv * nv * lanes]) noexcept
 {
     JointTrigBatch trig;
-    joint_trig_batch(q, trig);
+    trig = JointTrigBatch{};  // no angle is read
     integrate_derivatives_batch_trig(q, trig, v, dintegrate_dq, dintegrate_dv);
 }
 
@@ -15045,7 +15045,7 @@ void difference_derivatives_batch(const double q[nq * lanes], const double q_tar
                                   double ddifference_dq_target[nv * nv * lanes]) noexcept
 {
     JointTrigBatch trig;
-    joint_trig_batch(q, trig);
+    trig = JointTrigBatch{};  // no angle is read
     difference_derivatives_batch_trig(q, trig, q_target, ddifference_dq, ddifference_dq_target);
 }
 

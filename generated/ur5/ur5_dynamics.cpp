@@ -14282,7 +14282,7 @@ void integrate_trig(const double q[nq], const JointTrig& trig, const double v[nv
 void integrate(const double q[nq], const double v[nv], double q_plus[nq]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    trig = JointTrig{};  // no angle is read
     integrate_trig(q, trig, v, q_plus);
 }
 
@@ -14323,7 +14323,7 @@ void difference_trig(const double q[nq], const JointTrig& trig, const double q_t
 void difference(const double q[nq], const double q_target[nq], double delta[nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    trig = JointTrig{};  // no angle is read
     difference_trig(q, trig, q_target, delta);
 }
 
@@ -14360,7 +14360,7 @@ void integrate_derivatives(const double q[nq], const double v[nv], double dinteg
                            double dintegrate_dv[nv * nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    trig = JointTrig{};  // no angle is read
     integrate_derivatives_trig(q, trig, v, dintegrate_dq, dintegrate_dv);
 }
 
@@ -14398,7 +14398,7 @@ void difference_derivatives(const double q[nq], const double q_target[nq],
                             double ddifference_dq_target[nv * nv]) noexcept
 {
     JointTrig trig;
-    joint_trig(q, trig);
+    trig = JointTrig{};  // no angle is read
     difference_derivatives_trig(q, trig, q_target, ddifference_dq, ddifference_dq_target);
 }
 

@@ -309,6 +309,39 @@ TEST_P(Emitted, SinAndCosOnlyInJointTrigOncePerRevoluteAngle) {
         << model.joint_name[i];
 }
 
+// A function whose _trig form reads no angle (the configuration space's) computes no sin or
+// cos for it: f zeroes its trig; the others fill theirs (C++, C and batches).
+TEST(Emitted, NoSinOrCosForAFunctionThatReadsNoAngle) {
+  const Robot robot = load_robot(std::string(DYNGEN_TEST_MODELS) + "/ur5.urdf");
+  for (const std::string language : {"c++", "c"}) {
+    GenerateOptions options;
+    options.name = "ur5";
+    options.language = language;
+    options.batch = language == "c" ? 0 : 2;
+    options.algorithms = {"rnea", "integrate", "difference", "integrate_derivatives",
+                          "difference_derivatives"};
+    int zeroed = 0, filled = 0;
+    for (const GeneratedFile& f : generate(robot, options).files) {
+      if (f.name.find("_dynamics.c") == std::string::npos && f.name != "ur5_batch.cpp") continue;
+      for (const std::string& a : options.algorithms) {
+        const std::string wrapper = (language == "c" ? "ur5_" : "") + a +
+                                    (f.name == "ur5_batch.cpp" ? "_batch(" : "(");
+        const std::size_t at = f.text.find("\nvoid " + wrapper);
+        ASSERT_NE(at, std::string::npos) << f.name << ": " << wrapper;
+        const std::string body = f.text.substr(at, f.text.find("\n}\n", at) - at);
+        const bool zeroes = body.find("// no angle is read") != std::string::npos;
+        EXPECT_EQ(zeroes, a != "rnea") << f.name << ": " << body;
+        const bool sines = body.find("joint_trig") != std::string::npos ||
+                           body.find("sincos") != std::string::npos;
+        EXPECT_EQ(sines, a == "rnea") << f.name << ": " << body;
+        ++(zeroes ? zeroed : filled);
+      }
+    }
+    EXPECT_EQ(zeroed, language == "c" ? 4 : 8) << language;
+    EXPECT_EQ(filled, language == "c" ? 1 : 2) << language;
+  }
+}
+
 // ---- the shared structure
 
 /// How often each operation statement runs in one call of code: the body's own statements,
