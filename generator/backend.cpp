@@ -128,11 +128,13 @@ std::string function_definitions(const PackageContext& p, const Dialect& dialect
                                  const std::string& summary, const std::string& counts) {
   const std::string a(spec.name);
   const std::string trig_arguments = call_arguments(spec, dialect).second;
+  const bool reads_angles = std::ranges::any_of(code.angles, [](bool read) { return read; });
   std::string text = code.helpers.empty() ? "" : "\n" + code.helpers;
   return text + fill("function.cpp.in",
                      {{"trig_name", dialect.function(a) + "_trig"},
                       {"trig_type", dialect.trig_type()},
-                      {"joint_trig", dialect.joint_trig()},
+                      {"trig_note", reads_angles ? "sin and cos in " + dialect.joint_trig()
+                                                 : std::string("it reads no joint angle")},
                       {"summary", summary},
                       {"declaration", declaration(dialect.function(a),
                                                   parameters(spec, p.scalar, false, dialect),

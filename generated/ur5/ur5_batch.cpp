@@ -14815,7 +14815,7 @@ void regressor_many(long count, const double* q, const double* v, const double* 
 }
 
 // The configuration reached from q along the tangent vector v in unit time: q (+) v (Pinocchio's integrate). (a batch)
-// Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 per lane (sin and cos in joint_trig_batch).
+// Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 per lane (it reads no joint angle).
 void integrate_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                           const double v[nv * lanes], double q_plus[nq * lanes]) noexcept
 {
@@ -14885,7 +14885,7 @@ void integrate_many(long count, const double* q, const double* v, double* q_plus
 }
 
 // The tangent vector from q to q_target, with integrate(q, delta) = q_target (Pinocchio's difference). (a batch)
-// Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 per lane (sin and cos in joint_trig_batch).
+// Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 per lane (it reads no joint angle).
 void difference_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                            const double q_target[nq * lanes], double delta[nv * lanes]) noexcept
 {
@@ -14955,7 +14955,7 @@ void difference_many(long count, const double* q, const double* q_target, double
 }
 
 // Jacobians of integrate(q, v) by q and by v, in tangent coordinates (Pinocchio's dIntegrate). (a batch)
-// Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 per lane (sin and cos in joint_trig_batch).
+// Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 per lane (it reads no joint angle).
 void integrate_derivatives_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                       const double v[nv * lanes],
                                       double dintegrate_dq[nv * nv * lanes],
@@ -15011,7 +15011,7 @@ void integrate_derivatives_many(long count, const double* q, const double* v,
 }
 
 // Jacobians of difference(q, q_target) by q and by q_target, in tangent coordinates (Pinocchio's dDifference). (a batch)
-// Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 per lane (sin and cos in joint_trig_batch).
+// Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 per lane (it reads no joint angle).
 void difference_derivatives_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                        const double q_target[nq * lanes],
                                        double ddifference_dq[nv * nv * lanes],

@@ -14246,7 +14246,7 @@ void regressor(const double q[nq], const double v[nv], const double a[nv],
 }
 
 // The configuration reached from q along the tangent vector v in unit time: q (+) v (Pinocchio's integrate).
-// Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 (sin and cos in joint_trig).
+// Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 (it reads no joint angle).
 void integrate_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                     double q_plus[nq]) noexcept
 {
@@ -14287,7 +14287,7 @@ void integrate(const double q[nq], const double v[nv], double q_plus[nq]) noexce
 }
 
 // The tangent vector from q to q_target, with integrate(q, delta) = q_target (Pinocchio's difference).
-// Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 (sin and cos in joint_trig).
+// Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 (it reads no joint angle).
 void difference_trig(const double q[nq], const JointTrig& trig, const double q_target[nq],
                      double delta[nv]) noexcept
 {
@@ -14328,7 +14328,7 @@ void difference(const double q[nq], const double q_target[nq], double delta[nv])
 }
 
 // Jacobians of integrate(q, v) by q and by v, in tangent coordinates (Pinocchio's dIntegrate).
-// Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 (sin and cos in joint_trig).
+// Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 (it reads no joint angle).
 void integrate_derivatives_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                                 double dintegrate_dq[nv * nv],
                                 double dintegrate_dv[nv * nv]) noexcept
@@ -14365,7 +14365,7 @@ void integrate_derivatives(const double q[nq], const double v[nv], double dinteg
 }
 
 // Jacobians of difference(q, q_target) by q and by q_target, in tangent coordinates (Pinocchio's dDifference).
-// Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 (sin and cos in joint_trig).
+// Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 (it reads no joint angle).
 void difference_derivatives_trig(const double q[nq], const JointTrig& trig,
                                  const double q_target[nq], double ddifference_dq[nv * nv],
                                  double ddifference_dq_target[nv * nv]) noexcept

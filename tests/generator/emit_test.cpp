@@ -323,6 +323,13 @@ TEST(Emitted, NoSinOrCosForAFunctionThatReadsNoAngle) {
     int zeroed = 0, filled = 0;
     for (const GeneratedFile& f : generate(robot, options).files) {
       if (f.name.find("_dynamics.c") == std::string::npos && f.name != "ur5_batch.cpp") continue;
+      // and their banners say so
+      const std::string note = "(it reads no joint angle).";
+      int notes = 0;
+      for (std::size_t at = f.text.find(note); at != std::string::npos;
+           at = f.text.find(note, at + 1))
+        ++notes;
+      EXPECT_EQ(notes, 4) << f.name;
       for (const std::string& a : options.algorithms) {
         const std::string wrapper = (language == "c" ? "ur5_" : "") + a +
                                     (f.name == "ur5_batch.cpp" ? "_batch(" : "(");
