@@ -462,13 +462,6 @@ void add_check_files(std::vector<GeneratedFile>& files, const PackageContext& p,
                                                               {"cases", package.cases}})});
 }
 
-/// What CMakeLists.txt adds for dyngen_lie.h: the C library's sqrt and atan2.
-constexpr const char* lie_libraries =
-    "# integrate and difference call sqrt and atan2 (dyngen_lie.h), which are in libm on Unix\n"
-    "if(UNIX)\n"
-    "  target_link_libraries({}_dynamics PUBLIC m)\n"
-    "endif()\n";
-
 /// The package's CMakeLists.txt: the library from the backends' sources, their targets and the
 /// check.
 GeneratedFile cmake_file(const PackageContext& p, const Package& package,
@@ -477,7 +470,7 @@ GeneratedFile cmake_file(const PackageContext& p, const Package& package,
       {"banner", commented(banner, "#")},
       {"name", p.ns},
       {"NAME", upper(p.ns)},
-      {"libraries", package.uses_lie ? fmt::format(lie_libraries, p.ns) : ""},
+      {"libraries", package.uses_lie ? fill("lie.cmake.in", {{"name", p.ns}}) : ""},
       {"sources", ""},
       {"targets", ""}};
   for (const std::unique_ptr<Backend>& backend : package.backends)

@@ -56,7 +56,7 @@ Arrays<S> sized(const Model<S>& model, const std::vector<ArraySpec>& arrays,
   return x;
 }
 
-/// The inputs of `spec` for state number s: configurations (q, q1), v and the other arrays (a,
+/// The inputs of `spec` for state number s: configurations (q, q_target), v and the other arrays (a,
 /// tau) random within their ranges, a free or ball joint's quaternion a unit one.
 template <class S>
 Arrays<S> make_inputs(const Model<S>& model, const AlgorithmSpec<S>& spec, States states, int s) {
