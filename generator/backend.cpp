@@ -132,7 +132,6 @@ std::string function_definitions(const PackageContext& p, const Dialect& dialect
   std::string text = code.helpers.empty() ? "" : "\n" + code.helpers;
   return text + fill("function.cpp.in",
                      {{"trig_name", dialect.function(a) + "_trig"},
-                      {"trig_type", dialect.trig_type()},
                       {"trig_note", reads_angles ? "sin and cos in " + dialect.joint_trig()
                                                  : std::string("it reads no joint angle")},
                       {"summary", summary},

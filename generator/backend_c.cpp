@@ -35,7 +35,9 @@ class CBackend final : public LanguageBackend {
   const char* trig_member() const override { return "trig->"; }
   std::string trig_parameter() const override { return "const " + trig_type() + "* trig"; }
   const char* trig_argument() const override { return "&trig"; }
-  std::string zero_trig() const override { return "trig = (" + trig_type() + "){0};"; }
+  std::string zero_trig() const override {
+    return "static const " + trig_type() + " trig = {0};";
+  }
 
   // ---- Dialect: compiling
   const char* title() const override { return "C"; }

@@ -392,7 +392,7 @@ std::string CodePrinter<T>::shared_function(std::size_t g) const {
     }
     text += "};\n";
   }
-  text += fmt::format("static void {}({}const {} x[{}], {} y[{}]){}\n{{\n", fn,
+  text += fmt::format("DYNGEN_DISPATCH\nstatic void {}({}const {} x[{}], {} y[{}]){}\n{{\n", fn,
                       nk > 0 ? fmt::format("const {} k[{}], ", scalar_, nk) : "", type_,
                       first.inputs.size(), type_, first.outputs.size(), dialect_.no_throw());
   std::map<int, std::string> local;
@@ -778,9 +778,11 @@ std::string emit_trig_fill(const Model<double>& model, bool single_precision,
                            const std::vector<bool>& angles, const Dialect& dialect) {
   if (std::find(angles.begin(), angles.end(), true) == angles.end())
     return fmt::format("    {}  // no angle is read\n", dialect.zero_trig());
+  const std::string declared = fmt::format("    {} trig;\n", dialect.trig_type());
   if (angles == revolute_angles(model))
-    return fmt::format("    {}(q, {});\n", dialect.joint_trig(), dialect.trig_argument());
-  std::string out = "    // the angles this function reads\n";
+    return fmt::format("{}    {}(q, {});\n", declared, dialect.joint_trig(),
+                       dialect.trig_argument());
+  std::string out = declared + "    // the angles this function reads\n";
   return out.append(sincos_calls(model, angles, single_precision, "trig.", dialect));
 }
 

@@ -180,8 +180,9 @@ class Dialect {
   /// The _trig functions' parameter, and how f passes its trig to f_trig.
   virtual std::string trig_parameter() const { return "const " + trig_type() + "& trig"; }
   virtual const char* trig_argument() const { return "trig"; }
-  /// f's trig when f_trig reads no angle: zeros, so that no sin or cos runs for nothing.
-  virtual std::string zero_trig() const { return "trig = " + trig_type() + "{};"; }
+  /// f's trig declared when f_trig reads no angle: constant zeros, so that no sin or cos runs
+  /// for nothing (static: GCC 12 takes a local's zeros for none when f_trig is cloned, and warns)
+  virtual std::string zero_trig() const { return "static const " + trig_type() + " trig{};"; }
 
   // ---- compiling
   /// The language's name for people ("C++") and in --lang ("c++").
@@ -231,9 +232,10 @@ int trig_entries(const Model<double>& model);
 std::string emit_joint_trig(const Model<double>& model, bool single_precision,
                             const Dialect& dialect = Dialect());
 
-/// How a plain f(q, ...) fills its trig before calling f_trig: joint_trig(q, trig), or, where
-/// its body reads only some of the revolute angles (`angles`, by q index; ur5's rnea leaves out
-/// the first joint, which turns about gravity's axis), those angles alone.
+/// How a plain f(q, ...) declares and fills its trig before calling f_trig: joint_trig(q, trig),
+/// or, where its body reads only some of the revolute angles (`angles`, by q index; ur5's rnea
+/// leaves out the first joint, which turns about gravity's axis), those angles alone, or zeros
+/// where it reads none.
 std::string emit_trig_fill(const Model<double>& model, bool single_precision,
                            const std::vector<bool>& angles, const Dialect& dialect = Dialect());
 

@@ -109,6 +109,9 @@ Toolchain toolchain(const std::string& target) {
     if (t.c.empty()) t.c = {"cc"};
     if (t.cxx.empty()) t.cxx = {"c++"};
     t.nm = {"nm"};
+    // one instruction set, the baseline: each of a function's clones (DYNGEN_DISPATCH) would
+    // have its own code and stack
+    t.flags = {"-DDYNGEN_NO_DISPATCH"};
     return t;
   }
   t.c = {"arm-none-eabi-gcc"};

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -478,6 +479,16 @@ GeneratedFile cmake_file(const PackageContext& p, const Package& package,
   return {"CMakeLists.txt", fill("CMakeLists.txt.in", values)};
 }
 
+/// The runtime's kernels.hpp as a package's dyngen_kernels.hpp: its include of sincos.h names
+/// the package's copy, dyngen_sincos.h.
+std::string kernels_header() {
+  std::string text(template_text("kernels.hpp"));
+  const std::string include = "#include \"sincos.h\"\n";
+  const std::size_t at = text.find(include);
+  if (at == std::string::npos) throw std::logic_error("kernels.hpp: no " + include);
+  return text.replace(at, include.size(), "#include \"dyngen_sincos.h\"\n");
+}
+
 /// The package's files under a banner.
 template <class T>
 std::vector<GeneratedFile> package_files(const PackageContext& p, const Package& package,
@@ -491,7 +502,7 @@ std::vector<GeneratedFile> package_files(const PackageContext& p, const Package&
   // the runtime's own header, verbatim: both sides compute sin and cos with the same code
   files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
   if (package.calls_kernels)
-    files.push_back({"dyngen_kernels.hpp", std::string(template_text("kernels.hpp"))});
+    files.push_back({"dyngen_kernels.hpp", kernels_header()});
   if (package.uses_lie) files.push_back({"dyngen_lie.h", std::string(template_text("lie.h"))});
   add_check_files<T>(files, p, package, summary.code_banner);
   files.push_back(cmake_file(p, package, banner));

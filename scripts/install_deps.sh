@@ -41,6 +41,9 @@ python=(
   python3-pytest python3-matplotlib       # its tests, and examples/python's plot
   python3-torch                           # the PyTorch functions (--torch)
 )
+dispatch=(
+  qemu-user  # tests/generated: one binary's AVX2 and baseline paths, on emulated processors
+)
 peers=(
   liborocos-kdl-dev libkdl-parser-dev  # tests/peers/kdl
 )
@@ -63,8 +66,9 @@ for job in "${jobs[@]}"; do
     report) packages+=("${report[@]}") ;;
     package) packages+=(dpkg-dev file) ;;  # CPack's dependency scan: dpkg-shlibdeps and file
     python) packages+=("${python[@]}") ;;
-    test) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}" "${python[@]}") ;;
-    bench) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}" "${python[@]}" valgrind) ;;
+    test) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}" "${dispatch[@]}" "${python[@]}") ;;
+    bench) packages+=("${report[@]}" "${peers[@]}" "${firmware[@]}" "${dispatch[@]}" "${python[@]}"
+                      valgrind) ;;
     fuzz) packages+=(clang libclang-rt-dev) ;;
   esac
 done

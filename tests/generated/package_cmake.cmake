@@ -29,7 +29,7 @@ endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} -D${upper}_ISA=sse3
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 string(REGEX REPLACE "[ \n]+" " " flat "${out}")  # CMake wraps its messages
-if(rc EQUAL 0 OR NOT flat MATCHES "${upper}_ISA is 'sse3': give sse2, avx2 or avx512")
+if(rc EQUAL 0 OR NOT flat MATCHES "${upper}_ISA is 'sse3': give dispatch, sse2, avx2 or avx512")
   message(FATAL_ERROR "${upper}_ISA=sse3 was not refused by name (exit status ${rc}):\n${out}")
 endif()
 message(STATUS "${NAME}: built with ${upper}_ISA=avx2, refused ${upper}_ISA=sse3")

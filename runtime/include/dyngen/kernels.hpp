@@ -4,14 +4,21 @@
 // runtime calls them (dyngen::run_kernel), and generated code calls this same file, copied into
 // each package as dyngen_kernels.hpp, so both compute the same bits; the generator records a
 // call instead of unrolling the loops, which keeps a big robot's code small. Self-contained
-// C++17: no includes, no allocation.
+// C++17: no allocation, and no include but sincos.h (dyngen_sincos.h in a package) for
+// DYNGEN_DISPATCH.
 #pragma once
+
+#include "sincos.h"
 
 // Generated code calls the kernels with constant tables: a compiler that specialised a kernel
 // for them would unroll its loops back into the code they replace (GCC -O3 then takes minutes
-// and gigabytes on a 36-DoF robot), so each kernel stays one function.
+// and gigabytes on a 36-DoF robot), so each kernel stays one function. A kernel with a clone per
+// instruction set (DYNGEN_DISPATCH) is called through the loader's choice, which no compiler
+// specialises, and GCC refuses noclone on it.
 #if defined(__clang__)
-#define DYNGEN_KERNEL __attribute__((noinline))
+#define DYNGEN_KERNEL __attribute__((noinline)) DYNGEN_DISPATCH
+#elif defined(__GNUC__) && DYNGEN_DISPATCHES
+#define DYNGEN_KERNEL __attribute__((noinline)) DYNGEN_DISPATCH
 #elif defined(__GNUC__)
 #define DYNGEN_KERNEL __attribute__((noinline, noclone))
 #else
