@@ -34,6 +34,7 @@ void joint_trig(const double q[nq], JointTrig& trig) noexcept
 
 // Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q).
 // Operations: add 63, mul 77, div 0, neg 0, sin 4, cos 4 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double a[nv],
                double tau[nv]) noexcept
 {
@@ -212,6 +213,7 @@ void rnea(const double q[nq], const double v[nv], const double a[nv], double tau
 
 // Mass matrix M(q) (composite rigid bodies).
 // Operations: add 39, mul 31, div 0, neg 1, sin 3, cos 3 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noexcept
 {
     // ---- link 'link4' (3) <- 'link3' (2); joint 'link4_joint': prismatic axis (1, 0, 0); kinematics
@@ -352,6 +354,7 @@ void crba(const double q[nq], double M[nv * nv]) noexcept
 
 // Forward dynamics (articulated bodies): qdd = M(q)^-1 (tau - C(q, v) v - g(q)).
 // Operations: add 152, mul 178, div 4, neg 0, sin 4, cos 4 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double tau[nv],
               double qdd[nv]) noexcept
 {

@@ -31,6 +31,27 @@ typedef char dyngen_sc_u64_has_64_bits[sizeof(dyngen_sc_u64) == 8 ? 1 : -1];
 typedef char dyngen_sc_float_is_binary32[sizeof(float) == 4 ? 1 : -1];
 typedef char dyngen_sc_double_is_binary64[sizeof(double) == 8 ? 1 : -1];
 
+/* DYNGEN_DISPATCH, before a function's definition: the load-time choice of instruction set that
+ * the generated functions and dyngen's loops take. On x86-64 GNU/Linux (the loader's ifunc) with
+ * a compiler that has target_clones (GCC, clang), each such function is compiled for AVX2 and
+ * for the baseline, and the loader binds the one the processor runs. The bits are the same in
+ * both: AVX2 has no FMA to contract a*b+c into, and nothing is reassociated. It is empty where
+ * code is built for one instruction set anyway (-mavx2, a Cortex-M) or under
+ * -DDYNGEN_NO_DISPATCH (one baseline copy, half the compile time). DYNGEN_DISPATCHES says which
+ * (1 or 0). */
+#if defined(__x86_64__) && defined(__gnu_linux__) && !defined(__AVX2__)
+#if !defined(DYNGEN_NO_DISPATCH) && defined(__has_attribute)
+#if __has_attribute(target_clones)
+#define DYNGEN_DISPATCHES 1
+#define DYNGEN_DISPATCH __attribute__((target_clones("avx2", "default")))
+#endif
+#endif
+#endif
+#ifndef DYNGEN_DISPATCH
+#define DYNGEN_DISPATCHES 0
+#define DYNGEN_DISPATCH
+#endif
+
 #if defined(__GNUC__)
 /* Large arguments are rare: kept out of line so that every call site stays small. */
 #define DYNGEN_SC_COLD __attribute__((noinline, cold))

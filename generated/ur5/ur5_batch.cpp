@@ -24,9 +24,9 @@
 //     runtime:   add 702, mul 858, div 0, neg 3, sin 6, cos 6
 //     0 of 10 link sections in 0 shared functions
 //   minv
-//     generated: add 459, mul 673, div 5, neg 15, sin 5, cos 5
-//     runtime:   add 2223, mul 2538, div 6, neg 18, sin 6, cos 6
-//     0 of 14 link sections in 0 shared functions
+//     generated: add 187, mul 212, div 5, neg 2, sin 5, cos 5
+//     runtime:   add 927, mul 1235, div 6, neg 0, sin 6, cos 6
+//     0 of 20 link sections in 0 shared functions
 //   rnea_derivatives
 //     generated: add 1028, mul 1156, div 0, neg 5, sin 5, cos 5
 //     runtime:   add 4939, mul 5754, div 0, neg 3, sin 6, cos 6
@@ -135,6 +135,7 @@ void joint_trig_batch(const double q[nq * lanes], JointTrigBatch& trig) noexcept
 
 // Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q). (a batch)
 // Operations: add 174, mul 251, div 0, neg 0, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void rnea_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                      const double v[nv * lanes], const double a[nv * lanes],
                      double tau[nv * lanes]) noexcept
@@ -648,6 +649,7 @@ void rnea_many(long count, const double* q, const double* v, const double* a, do
 
 // Mass matrix M(q) (composite rigid bodies). (a batch)
 // Operations: add 108, mul 122, div 0, neg 1, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void crba_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                      double M[nv * nv * lanes]) noexcept
 {
@@ -995,6 +997,7 @@ void crba_many(long count, const double* q, double* M) noexcept
 
 // Forward dynamics (articulated bodies): qdd = M(q)^-1 (tau - C(q, v) v - g(q)). (a batch)
 // Operations: add 508, mul 688, div 5, neg 0, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void aba_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                     const double v[nv * lanes], const double tau[nv * lanes],
                     double qdd[nv * lanes]) noexcept
@@ -2296,6 +2299,7 @@ void aba_many(long count, const double* q, const double* v, const double* tau, d
 
 // Generalised gravity g(q) = rnea(q, 0, 0), from each subtree's mass and first moment. (a batch)
 // Operations: add 13, mul 23, div 0, neg 0, sin 3, cos 3 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void gravity_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                         double g[nv * lanes]) noexcept
 {
@@ -2388,6 +2392,7 @@ void gravity_many(long count, const double* q, double* g) noexcept
 
 // Nonlinear effects h(q, v) = C(q, v) v + g(q): rnea at a = 0. (a batch)
 // Operations: add 156, mul 235, div 0, neg 0, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void nle_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                     const double v[nv * lanes], double h[nv * lanes]) noexcept
 {
@@ -2854,8 +2859,9 @@ void nle_many(long count, const double* q, const double* v, double* h) noexcept
     }
 }
 
-// Inverse of the mass matrix M(q)^-1 (articulated-body recursion, no factorisation). (a batch)
-// Operations: add 459, mul 673, div 5, neg 15, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+// Inverse of the mass matrix M(q)^-1 (CRBA, then L^T D L along the tree's branches). (a batch)
+// Operations: add 187, mul 212, div 5, neg 2, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void minv_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                      double Minv[nv * nv * lanes]) noexcept
 {
@@ -2873,19 +2879,19 @@ void minv_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
     lane sin_q5; load(sin_q5, trig.sin_q + 5 * lanes);
     lane cos_q5; load(cos_q5, trig.cos_q + 5 * lanes);
 
-    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; velocity pass
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; kinematics
     const lane upper_arm_link_0 = 4.896638650109253e-12 * cos_q1;
     const lane upper_arm_link_1 = upper_arm_link_0 - sin_q1;
     const lane upper_arm_link_2 = 4.896638650109253e-12 * sin_q1;
     const lane upper_arm_link_3 = cos_q1 + upper_arm_link_2;
 
-    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; velocity pass
+    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; kinematics
     const lane wrist_1_link_0 = 4.896638650109253e-12 * cos_q3;
     const lane wrist_1_link_1 = wrist_1_link_0 - sin_q3;
     const lane wrist_1_link_2 = 4.896638650109253e-12 * sin_q3;
     const lane wrist_1_link_3 = cos_q3 + wrist_1_link_2;
 
-    // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; articulated inertia pass
+    // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; composite inertia
     const lane wrist_3_link_0 = 0.0171364731454 * cos_q5;
     const lane wrist_3_link_1 = 0.033822 * sin_q5;
     const lane wrist_3_link_2 = sin_q5 * (-0.0171364731454);
@@ -2899,1197 +2905,463 @@ void minv_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
     const lane wrist_3_link_10 = sin_q5 * wrist_3_link_3;
     const lane wrist_3_link_11 = cos_q5 * wrist_3_link_2;
     const lane wrist_3_link_12 = wrist_3_link_10 + wrist_3_link_11;
-    const lane wrist_3_link_13 = 0.1879 * cos_q5;
-    const lane wrist_3_link_14 = 0.1879 * sin_q5;
-    const lane wrist_3_link_15 = sin_q5 * (-0.1879);
-    const lane wrist_3_link_16 = sin_q5 * wrist_3_link_14;
-    const lane wrist_3_link_17 = cos_q5 * wrist_3_link_13;
-    const lane wrist_3_link_18 = wrist_3_link_16 + wrist_3_link_17;
-    const lane wrist_3_link_19 = sin_q5 * wrist_3_link_15;
-    const lane wrist_3_link_20 = wrist_3_link_17 - wrist_3_link_19;
-    const lane wrist_3_link_21 = sin_q5 * wrist_3_link_13;
-    const lane wrist_3_link_22 = cos_q5 * wrist_3_link_15;
-    const lane wrist_3_link_23 = wrist_3_link_21 + wrist_3_link_22;
-    const lane wrist_3_link_24 = 0.09465 * wrist_3_link_18;
-    const lane wrist_3_link_25 = 0.09465 * wrist_3_link_23;
-    const lane wrist_3_link_26 = wrist_3_link_24 * (-0.09465);
-    const lane wrist_3_link_27 = wrist_3_link_6 - (-0.00168332516775);
-    const lane wrist_3_link_28 = 0.111172755531 + wrist_3_link_27;
-    const lane wrist_3_link_29 = 0.111172755531 - wrist_3_link_26;
-    const lane wrist_3_link_30 = 0.21942 + wrist_3_link_9;
-    const lane wrist_3_link_31 = 1.219 + wrist_3_link_18;
-    const lane wrist_3_link_32 = 1.219 + wrist_3_link_20;
+    const lane wrist_3_link_13 = wrist_3_link_6 + 0.00168332516775;
+    const lane wrist_3_link_14 = wrist_3_link_9 - 0.00168332516775;
+    const lane wrist_3_link_15 = 0.00168332516775 + wrist_3_link_14;
+    const lane wrist_3_link_16 = 0.111172755531 + wrist_3_link_13;
+    const lane wrist_3_link_17 = 0.21942 + wrist_3_link_15;
 
-    // ---- link 'wrist_2_link' (4) <- 'wrist_1_link' (3); joint 'wrist_2_joint': revolute +z; articulated inertia pass
-    const lane wrist_2_link_0 = 1.0 / wrist_3_link_30;
-    const lane wrist_2_link_1 = wrist_3_link_12 * wrist_2_link_0;
-    const lane wrist_2_link_2 = wrist_3_link_30 * wrist_2_link_0;
-    const lane wrist_2_link_3 = cos_q4 * wrist_2_link_1;
-    const lane wrist_2_link_4 = sin_q4 * wrist_2_link_1;
-    const lane wrist_2_link_5 = wrist_3_link_12 * wrist_2_link_1;
-    const lane wrist_2_link_6 = wrist_3_link_28 - wrist_2_link_5;
-    const lane wrist_2_link_7 = wrist_3_link_30 * wrist_2_link_2;
-    const lane wrist_2_link_8 = wrist_3_link_30 - wrist_2_link_7;
-    const lane wrist_2_link_9 = wrist_3_link_12 * wrist_2_link_2;
-    const lane wrist_2_link_10 = wrist_3_link_12 - wrist_2_link_9;
-    const lane wrist_2_link_11 = cos_q4 * wrist_2_link_6;
-    const lane wrist_2_link_12 = sin_q4 * wrist_3_link_29;
-    const lane wrist_2_link_13 = cos_q4 * wrist_2_link_10;
-    const lane wrist_2_link_14 = sin_q4 * wrist_2_link_6;
-    const lane wrist_2_link_15 = cos_q4 * wrist_3_link_29;
-    const lane wrist_2_link_16 = sin_q4 * wrist_2_link_10;
-    const lane wrist_2_link_17 = sin_q4 * wrist_2_link_12;
-    const lane wrist_2_link_18 = cos_q4 * wrist_2_link_11;
-    const lane wrist_2_link_19 = wrist_2_link_17 + wrist_2_link_18;
-    const lane wrist_2_link_20 = cos_q4 * wrist_2_link_15;
-    const lane wrist_2_link_21 = sin_q4 * wrist_2_link_14;
-    const lane wrist_2_link_22 = wrist_2_link_20 + wrist_2_link_21;
-    const lane wrist_2_link_23 = sin_q4 * wrist_2_link_15;
-    const lane wrist_2_link_24 = cos_q4 * wrist_2_link_14;
-    const lane wrist_2_link_25 = wrist_2_link_24 - wrist_2_link_23;
-    const lane wrist_2_link_26 = sin_q4 * 0.017784735;
-    const lane wrist_2_link_27 = cos_q4 * (-0.017784735);
-    const lane wrist_2_link_28 = cos_q4 * wrist_3_link_24;
-    const lane wrist_2_link_29 = sin_q4 * wrist_3_link_24;
-    const lane wrist_2_link_30 = sin_q4 * wrist_2_link_28;
-    const lane wrist_2_link_31 = cos_q4 * wrist_2_link_26;
-    const lane wrist_2_link_32 = wrist_2_link_31 - wrist_2_link_30;
-    const lane wrist_2_link_33 = sin_q4 * wrist_2_link_29;
-    const lane wrist_2_link_34 = cos_q4 * wrist_2_link_27;
-    const lane wrist_2_link_35 = wrist_2_link_34 - wrist_2_link_33;
-    const lane wrist_2_link_36 = sin_q4 * wrist_3_link_25;
-    const lane wrist_2_link_37 = cos_q4 * wrist_2_link_28;
-    const lane wrist_2_link_38 = sin_q4 * wrist_2_link_26;
-    const lane wrist_2_link_39 = wrist_2_link_37 + wrist_2_link_38;
-    const lane wrist_2_link_40 = cos_q4 * wrist_2_link_29;
-    const lane wrist_2_link_41 = sin_q4 * wrist_2_link_27;
-    const lane wrist_2_link_42 = wrist_2_link_40 + wrist_2_link_41;
-    const lane wrist_2_link_43 = cos_q4 * wrist_3_link_25;
-    const lane wrist_2_link_44 = cos_q4 * wrist_3_link_31;
-    const lane wrist_2_link_45 = sin_q4 * (-1.4069);
-    const lane wrist_2_link_46 = cos_q4 * wrist_3_link_23;
-    const lane wrist_2_link_47 = sin_q4 * wrist_3_link_31;
-    const lane wrist_2_link_48 = cos_q4 * 1.4069;
-    const lane wrist_2_link_49 = sin_q4 * wrist_3_link_23;
-    const lane wrist_2_link_50 = sin_q4 * wrist_2_link_45;
-    const lane wrist_2_link_51 = cos_q4 * wrist_2_link_44;
-    const lane wrist_2_link_52 = wrist_2_link_51 - wrist_2_link_50;
-    const lane wrist_2_link_53 = cos_q4 * wrist_2_link_48;
-    const lane wrist_2_link_54 = sin_q4 * wrist_2_link_47;
-    const lane wrist_2_link_55 = wrist_2_link_53 + wrist_2_link_54;
-    const lane wrist_2_link_56 = sin_q4 * wrist_2_link_48;
-    const lane wrist_2_link_57 = cos_q4 * wrist_2_link_47;
-    const lane wrist_2_link_58 = wrist_2_link_57 - wrist_2_link_56;
-    const lane wrist_2_link_59 = wrist_2_link_36 * (-0.093);
-    const lane wrist_2_link_60 = 0.093 * wrist_2_link_32;
-    const lane wrist_2_link_61 = 0.093 * wrist_2_link_43;
-    const lane wrist_2_link_62 = 0.093 * wrist_2_link_39;
-    const lane wrist_2_link_63 = 0.093 * wrist_2_link_46;
-    const lane wrist_2_link_64 = 0.093 * wrist_2_link_52;
-    const lane wrist_2_link_65 = 0.093 * wrist_2_link_49;
-    const lane wrist_2_link_66 = 0.093 * wrist_2_link_58;
-    const lane wrist_2_link_67 = 0.093 * wrist_3_link_32;
-    const lane wrist_2_link_68 = (-0.093) * wrist_2_link_67;
-    const lane wrist_2_link_69 = 0.093 * wrist_2_link_63;
-    const lane wrist_2_link_70 = 0.093 * wrist_2_link_64;
-    const lane wrist_2_link_71 = wrist_2_link_32 + wrist_2_link_63;
-    const lane wrist_2_link_72 = wrist_2_link_35 + wrist_2_link_65;
-    const lane wrist_2_link_73 = wrist_2_link_67 - wrist_2_link_36;
-    const lane wrist_2_link_74 = wrist_2_link_19 + wrist_2_link_59;
-    const lane wrist_2_link_75 = wrist_2_link_59 + wrist_2_link_74;
-    const lane wrist_2_link_76 = wrist_2_link_75 - wrist_2_link_68;
-    const lane wrist_2_link_77 = wrist_2_link_8 + wrist_2_link_70;
-    const lane wrist_2_link_78 = wrist_2_link_25 + wrist_2_link_61;
-    const lane wrist_2_link_79 = wrist_2_link_13 - wrist_2_link_60;
-    const lane wrist_2_link_80 = wrist_2_link_79 - wrist_2_link_69;
-    const lane wrist_2_link_81 = wrist_2_link_16 - wrist_2_link_62;
-    const lane wrist_2_link_82 = 0.111172755531 + wrist_2_link_76;
-    const lane wrist_2_link_83 = 0.111172755531 + wrist_2_link_22;
-    const lane wrist_2_link_84 = 0.21942 + wrist_2_link_77;
-    const lane wrist_2_link_85 = 1.219 + wrist_2_link_52;
-    const lane wrist_2_link_86 = 1.219 + wrist_2_link_55;
-    const lane wrist_2_link_87 = 1.219 + wrist_3_link_32;
+    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; a descendant's column of M carried up
+    const lane wrist_1_link_4 = sin_q4 * (-0.0171364731454);
+    const lane wrist_1_link_5 = 0.0171364731454 * cos_q4;
 
-    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; articulated inertia pass
-    const lane wrist_1_link_4 = 1.0 / wrist_2_link_83;
-    const lane wrist_1_link_5 = wrist_2_link_78 * wrist_1_link_4;
-    const lane wrist_1_link_6 = wrist_2_link_83 * wrist_1_link_4;
-    const lane wrist_1_link_7 = wrist_2_link_81 * wrist_1_link_4;
-    const lane wrist_1_link_8 = wrist_2_link_39 * wrist_1_link_4;
-    const lane wrist_1_link_9 = wrist_2_link_42 * wrist_1_link_4;
-    const lane wrist_1_link_10 = wrist_2_link_43 * wrist_1_link_4;
-    const lane wrist_1_link_11 = wrist_1_link_3 * wrist_1_link_10;
-    const lane wrist_1_link_12 = wrist_1_link_1 * wrist_1_link_8;
-    const lane wrist_1_link_13 = wrist_1_link_11 + wrist_1_link_12;
-    const lane wrist_1_link_14 = wrist_1_link_1 * wrist_1_link_10;
-    const lane wrist_1_link_15 = wrist_1_link_3 * wrist_1_link_8;
-    const lane wrist_1_link_16 = wrist_1_link_14 - wrist_1_link_15;
-    const lane wrist_1_link_17 = 0.39225 * wrist_1_link_9;
-    const lane wrist_1_link_18 = 0.39225 * wrist_1_link_13;
-    const lane wrist_1_link_19 = wrist_1_link_3 * wrist_1_link_7;
-    const lane wrist_1_link_20 = wrist_1_link_1 * wrist_1_link_5;
-    const lane wrist_1_link_21 = wrist_1_link_19 + wrist_1_link_20;
-    const lane wrist_1_link_22 = wrist_1_link_1 * wrist_1_link_7;
-    const lane wrist_1_link_23 = wrist_1_link_3 * wrist_1_link_5;
-    const lane wrist_1_link_24 = wrist_1_link_22 - wrist_1_link_23;
-    const lane wrist_1_link_25 = wrist_1_link_21 - wrist_1_link_17;
-    const lane wrist_1_link_26 = wrist_1_link_6 + wrist_1_link_18;
-    const lane wrist_1_link_27 = wrist_2_link_4 * wrist_1_link_5;
-    const lane wrist_1_link_28 = wrist_2_link_4 * wrist_1_link_6;
-    const lane wrist_1_link_29 = wrist_2_link_4 * wrist_1_link_7;
-    const lane wrist_1_link_30 = wrist_2_link_4 * wrist_1_link_8;
-    const lane wrist_1_link_31 = wrist_2_link_4 * wrist_1_link_9;
-    const lane wrist_1_link_32 = wrist_2_link_4 * wrist_1_link_10;
-    const lane wrist_1_link_33 = wrist_2_link_3 - wrist_1_link_27;
-    const lane wrist_1_link_34 = wrist_2_link_4 - wrist_1_link_28;
-    const lane wrist_1_link_35 = wrist_2_link_2 - wrist_1_link_29;
-    const lane wrist_1_link_36 = wrist_1_link_3 * wrist_1_link_32;
-    const lane wrist_1_link_37 = wrist_1_link_1 * wrist_1_link_30;
-    const lane wrist_1_link_38 = wrist_1_link_36 + wrist_1_link_37;
-    const lane wrist_1_link_39 = wrist_1_link_1 * wrist_1_link_32;
-    const lane wrist_1_link_40 = wrist_1_link_3 * wrist_1_link_30;
-    const lane wrist_1_link_41 = wrist_1_link_40 - wrist_1_link_39;
-    const lane wrist_1_link_42 = wrist_1_link_31 * (-0.39225);
-    const lane wrist_1_link_43 = wrist_1_link_38 * (-0.39225);
-    const lane wrist_1_link_44 = wrist_1_link_3 * wrist_1_link_35;
-    const lane wrist_1_link_45 = wrist_1_link_1 * wrist_1_link_33;
-    const lane wrist_1_link_46 = wrist_1_link_44 + wrist_1_link_45;
-    const lane wrist_1_link_47 = wrist_1_link_1 * wrist_1_link_35;
-    const lane wrist_1_link_48 = wrist_1_link_3 * wrist_1_link_33;
-    const lane wrist_1_link_49 = wrist_1_link_47 - wrist_1_link_48;
-    const lane wrist_1_link_50 = wrist_1_link_46 - wrist_1_link_42;
-    const lane wrist_1_link_51 = wrist_1_link_34 + wrist_1_link_43;
-    const lane wrist_1_link_52 = cos_q4 * wrist_1_link_5;
-    const lane wrist_1_link_53 = cos_q4 * wrist_1_link_6;
-    const lane wrist_1_link_54 = cos_q4 * wrist_1_link_7;
-    const lane wrist_1_link_55 = cos_q4 * wrist_1_link_8;
-    const lane wrist_1_link_56 = cos_q4 * wrist_1_link_9;
-    const lane wrist_1_link_57 = cos_q4 * wrist_1_link_10;
-    const lane wrist_1_link_58 = sin_q4 + wrist_1_link_52;
-    const lane wrist_1_link_59 = cos_q4 - wrist_1_link_53;
-    const lane wrist_1_link_60 = wrist_1_link_3 * wrist_1_link_57;
-    const lane wrist_1_link_61 = wrist_1_link_1 * wrist_1_link_55;
-    const lane wrist_1_link_62 = wrist_1_link_60 + wrist_1_link_61;
-    const lane wrist_1_link_63 = wrist_1_link_1 * wrist_1_link_57;
-    const lane wrist_1_link_64 = wrist_1_link_3 * wrist_1_link_55;
-    const lane wrist_1_link_65 = wrist_1_link_64 - wrist_1_link_63;
-    const lane wrist_1_link_66 = (-0.39225) * wrist_1_link_56;
-    const lane wrist_1_link_67 = (-0.39225) * wrist_1_link_62;
-    const lane wrist_1_link_68 = wrist_1_link_3 * wrist_1_link_54;
-    const lane wrist_1_link_69 = wrist_1_link_1 * wrist_1_link_58;
-    const lane wrist_1_link_70 = wrist_1_link_68 + wrist_1_link_69;
-    const lane wrist_1_link_71 = wrist_1_link_1 * wrist_1_link_54;
-    const lane wrist_1_link_72 = wrist_1_link_3 * wrist_1_link_58;
-    const lane wrist_1_link_73 = wrist_1_link_72 - wrist_1_link_71;
-    const lane wrist_1_link_74 = wrist_1_link_66 + wrist_1_link_70;
-    const lane wrist_1_link_75 = wrist_1_link_59 + wrist_1_link_67;
-    const lane wrist_1_link_76 = wrist_2_link_78 * wrist_1_link_5;
-    const lane wrist_1_link_77 = wrist_2_link_82 - wrist_1_link_76;
-    const lane wrist_1_link_78 = wrist_2_link_83 * wrist_1_link_6;
-    const lane wrist_1_link_79 = wrist_2_link_83 - wrist_1_link_78;
-    const lane wrist_1_link_80 = wrist_2_link_81 * wrist_1_link_7;
-    const lane wrist_1_link_81 = wrist_2_link_84 - wrist_1_link_80;
-    const lane wrist_1_link_82 = wrist_2_link_78 * wrist_1_link_6;
-    const lane wrist_1_link_83 = wrist_2_link_78 - wrist_1_link_82;
-    const lane wrist_1_link_84 = wrist_2_link_78 * wrist_1_link_7;
-    const lane wrist_1_link_85 = wrist_2_link_80 - wrist_1_link_84;
-    const lane wrist_1_link_86 = wrist_2_link_83 * wrist_1_link_7;
-    const lane wrist_1_link_87 = wrist_2_link_81 - wrist_1_link_86;
-    const lane wrist_1_link_88 = wrist_2_link_78 * wrist_1_link_8;
-    const lane wrist_1_link_89 = wrist_2_link_71 - wrist_1_link_88;
-    const lane wrist_1_link_90 = wrist_2_link_78 * wrist_1_link_9;
-    const lane wrist_1_link_91 = wrist_2_link_72 - wrist_1_link_90;
-    const lane wrist_1_link_92 = wrist_2_link_78 * wrist_1_link_10;
-    const lane wrist_1_link_93 = wrist_2_link_73 - wrist_1_link_92;
-    const lane wrist_1_link_94 = wrist_2_link_83 * wrist_1_link_8;
-    const lane wrist_1_link_95 = wrist_2_link_39 - wrist_1_link_94;
-    const lane wrist_1_link_96 = wrist_2_link_83 * wrist_1_link_9;
-    const lane wrist_1_link_97 = wrist_2_link_42 - wrist_1_link_96;
-    const lane wrist_1_link_98 = wrist_2_link_83 * wrist_1_link_10;
-    const lane wrist_1_link_99 = wrist_2_link_43 - wrist_1_link_98;
-    const lane wrist_1_link_100 = wrist_2_link_81 * wrist_1_link_8;
-    const lane wrist_1_link_101 = wrist_2_link_64 + wrist_1_link_100;
-    const lane wrist_1_link_102 = wrist_2_link_81 * wrist_1_link_9;
-    const lane wrist_1_link_103 = wrist_2_link_66 + wrist_1_link_102;
-    const lane wrist_1_link_104 = wrist_2_link_81 * wrist_1_link_10;
-    const lane wrist_1_link_105 = wrist_2_link_63 + wrist_1_link_104;
-    const lane wrist_1_link_106 = wrist_2_link_39 * wrist_1_link_8;
-    const lane wrist_1_link_107 = wrist_2_link_85 - wrist_1_link_106;
-    const lane wrist_1_link_108 = wrist_2_link_42 * wrist_1_link_9;
-    const lane wrist_1_link_109 = wrist_2_link_86 - wrist_1_link_108;
-    const lane wrist_1_link_110 = wrist_2_link_43 * wrist_1_link_10;
-    const lane wrist_1_link_111 = wrist_2_link_87 - wrist_1_link_110;
-    const lane wrist_1_link_112 = wrist_2_link_39 * wrist_1_link_9;
-    const lane wrist_1_link_113 = wrist_2_link_58 - wrist_1_link_112;
-    const lane wrist_1_link_114 = wrist_2_link_39 * wrist_1_link_10;
-    const lane wrist_1_link_115 = wrist_2_link_46 - wrist_1_link_114;
-    const lane wrist_1_link_116 = wrist_2_link_42 * wrist_1_link_10;
-    const lane wrist_1_link_117 = wrist_2_link_49 - wrist_1_link_116;
-    const lane wrist_1_link_118 = wrist_1_link_3 * wrist_1_link_85;
-    const lane wrist_1_link_119 = wrist_1_link_1 * wrist_1_link_77;
-    const lane wrist_1_link_120 = wrist_1_link_118 + wrist_1_link_119;
-    const lane wrist_1_link_121 = wrist_1_link_3 * wrist_1_link_87;
-    const lane wrist_1_link_122 = wrist_1_link_1 * wrist_1_link_83;
-    const lane wrist_1_link_123 = wrist_1_link_121 + wrist_1_link_122;
-    const lane wrist_1_link_124 = wrist_1_link_3 * wrist_1_link_81;
-    const lane wrist_1_link_125 = wrist_1_link_1 * wrist_1_link_85;
-    const lane wrist_1_link_126 = wrist_1_link_124 + wrist_1_link_125;
-    const lane wrist_1_link_127 = wrist_1_link_3 * wrist_1_link_77;
-    const lane wrist_1_link_128 = wrist_1_link_125 - wrist_1_link_127;
-    const lane wrist_1_link_129 = wrist_1_link_1 * wrist_1_link_87;
-    const lane wrist_1_link_130 = wrist_1_link_3 * wrist_1_link_83;
-    const lane wrist_1_link_131 = wrist_1_link_129 - wrist_1_link_130;
-    const lane wrist_1_link_132 = wrist_1_link_1 * wrist_1_link_81;
-    const lane wrist_1_link_133 = wrist_1_link_132 - wrist_1_link_118;
-    const lane wrist_1_link_134 = wrist_1_link_3 * wrist_1_link_126;
-    const lane wrist_1_link_135 = wrist_1_link_1 * wrist_1_link_120;
-    const lane wrist_1_link_136 = wrist_1_link_134 + wrist_1_link_135;
-    const lane wrist_1_link_137 = wrist_1_link_1 * wrist_1_link_133;
-    const lane wrist_1_link_138 = wrist_1_link_3 * wrist_1_link_128;
-    const lane wrist_1_link_139 = wrist_1_link_137 - wrist_1_link_138;
-    const lane wrist_1_link_140 = wrist_1_link_3 * wrist_1_link_133;
-    const lane wrist_1_link_141 = wrist_1_link_1 * wrist_1_link_128;
-    const lane wrist_1_link_142 = wrist_1_link_140 + wrist_1_link_141;
-    const lane wrist_1_link_143 = wrist_1_link_3 * wrist_1_link_93;
-    const lane wrist_1_link_144 = wrist_1_link_1 * wrist_1_link_89;
-    const lane wrist_1_link_145 = wrist_1_link_143 + wrist_1_link_144;
-    const lane wrist_1_link_146 = wrist_1_link_1 * wrist_1_link_93;
-    const lane wrist_1_link_147 = wrist_1_link_3 * wrist_1_link_89;
-    const lane wrist_1_link_148 = wrist_1_link_146 - wrist_1_link_147;
-    const lane wrist_1_link_149 = wrist_1_link_3 * wrist_1_link_99;
-    const lane wrist_1_link_150 = wrist_1_link_1 * wrist_1_link_95;
-    const lane wrist_1_link_151 = wrist_1_link_149 + wrist_1_link_150;
-    const lane wrist_1_link_152 = wrist_1_link_1 * wrist_1_link_99;
-    const lane wrist_1_link_153 = wrist_1_link_3 * wrist_1_link_95;
-    const lane wrist_1_link_154 = wrist_1_link_152 - wrist_1_link_153;
-    const lane wrist_1_link_155 = wrist_1_link_3 * wrist_1_link_105;
-    const lane wrist_1_link_156 = wrist_1_link_1 * wrist_1_link_101;
-    const lane wrist_1_link_157 = wrist_1_link_155 + wrist_1_link_156;
-    const lane wrist_1_link_158 = wrist_1_link_1 * wrist_1_link_105;
-    const lane wrist_1_link_159 = wrist_1_link_3 * wrist_1_link_101;
-    const lane wrist_1_link_160 = wrist_1_link_159 - wrist_1_link_158;
-    const lane wrist_1_link_161 = wrist_1_link_3 * wrist_1_link_157;
-    const lane wrist_1_link_162 = wrist_1_link_1 * wrist_1_link_145;
-    const lane wrist_1_link_163 = wrist_1_link_162 - wrist_1_link_161;
-    const lane wrist_1_link_164 = wrist_1_link_3 * wrist_1_link_103;
-    const lane wrist_1_link_165 = wrist_1_link_1 * wrist_1_link_91;
-    const lane wrist_1_link_166 = wrist_1_link_165 - wrist_1_link_164;
-    const lane wrist_1_link_167 = wrist_1_link_3 * wrist_1_link_160;
-    const lane wrist_1_link_168 = wrist_1_link_1 * wrist_1_link_148;
-    const lane wrist_1_link_169 = wrist_1_link_167 + wrist_1_link_168;
-    const lane wrist_1_link_170 = wrist_1_link_1 * wrist_1_link_157;
-    const lane wrist_1_link_171 = wrist_1_link_3 * wrist_1_link_145;
-    const lane wrist_1_link_172 = wrist_1_link_170 + wrist_1_link_171;
-    const lane wrist_1_link_173 = wrist_1_link_1 * wrist_1_link_103;
-    const lane wrist_1_link_174 = wrist_1_link_3 * wrist_1_link_91;
-    const lane wrist_1_link_175 = wrist_1_link_173 + wrist_1_link_174;
-    const lane wrist_1_link_176 = wrist_1_link_1 * wrist_1_link_160;
-    const lane wrist_1_link_177 = wrist_1_link_3 * wrist_1_link_148;
-    const lane wrist_1_link_178 = wrist_1_link_176 - wrist_1_link_177;
-    const lane wrist_1_link_179 = wrist_1_link_3 * wrist_1_link_115;
-    const lane wrist_1_link_180 = wrist_1_link_1 * wrist_1_link_107;
-    const lane wrist_1_link_181 = wrist_1_link_179 + wrist_1_link_180;
-    const lane wrist_1_link_182 = wrist_1_link_3 * wrist_1_link_117;
-    const lane wrist_1_link_183 = wrist_1_link_1 * wrist_1_link_113;
-    const lane wrist_1_link_184 = wrist_1_link_182 + wrist_1_link_183;
-    const lane wrist_1_link_185 = wrist_1_link_3 * wrist_1_link_111;
-    const lane wrist_1_link_186 = wrist_1_link_1 * wrist_1_link_115;
-    const lane wrist_1_link_187 = wrist_1_link_185 + wrist_1_link_186;
-    const lane wrist_1_link_188 = wrist_1_link_3 * wrist_1_link_107;
-    const lane wrist_1_link_189 = wrist_1_link_186 - wrist_1_link_188;
-    const lane wrist_1_link_190 = wrist_1_link_1 * wrist_1_link_117;
-    const lane wrist_1_link_191 = wrist_1_link_3 * wrist_1_link_113;
-    const lane wrist_1_link_192 = wrist_1_link_190 - wrist_1_link_191;
-    const lane wrist_1_link_193 = wrist_1_link_1 * wrist_1_link_111;
-    const lane wrist_1_link_194 = wrist_1_link_193 - wrist_1_link_179;
-    const lane wrist_1_link_195 = wrist_1_link_3 * wrist_1_link_187;
-    const lane wrist_1_link_196 = wrist_1_link_1 * wrist_1_link_181;
-    const lane wrist_1_link_197 = wrist_1_link_195 + wrist_1_link_196;
-    const lane wrist_1_link_198 = wrist_1_link_1 * wrist_1_link_194;
-    const lane wrist_1_link_199 = wrist_1_link_3 * wrist_1_link_189;
-    const lane wrist_1_link_200 = wrist_1_link_198 - wrist_1_link_199;
-    const lane wrist_1_link_201 = wrist_1_link_3 * wrist_1_link_194;
-    const lane wrist_1_link_202 = wrist_1_link_1 * wrist_1_link_189;
-    const lane wrist_1_link_203 = wrist_1_link_201 + wrist_1_link_202;
-    const lane wrist_1_link_204 = 0.39225 * wrist_1_link_166;
-    const lane wrist_1_link_205 = 0.39225 * wrist_1_link_163;
-    const lane wrist_1_link_206 = 0.39225 * wrist_1_link_97;
-    const lane wrist_1_link_207 = 0.39225 * wrist_1_link_151;
-    const lane wrist_1_link_208 = (-0.39225) * wrist_1_link_175;
-    const lane wrist_1_link_209 = (-0.39225) * wrist_1_link_172;
-    const lane wrist_1_link_210 = 0.39225 * wrist_1_link_184;
-    const lane wrist_1_link_211 = 0.39225 * wrist_1_link_197;
-    const lane wrist_1_link_212 = 0.39225 * wrist_1_link_109;
-    const lane wrist_1_link_213 = 0.39225 * wrist_1_link_192;
-    const lane wrist_1_link_214 = 0.39225 * wrist_1_link_203;
-    const lane wrist_1_link_215 = 0.39225 * wrist_1_link_212;
-    const lane wrist_1_link_216 = (-0.39225) * wrist_1_link_210;
-    const lane wrist_1_link_217 = (-0.39225) * wrist_1_link_211;
-    const lane wrist_1_link_218 = wrist_1_link_163 - wrist_1_link_210;
-    const lane wrist_1_link_219 = wrist_1_link_166 - wrist_1_link_212;
-    const lane wrist_1_link_220 = wrist_1_link_169 - wrist_1_link_213;
-    const lane wrist_1_link_221 = wrist_1_link_151 + wrist_1_link_211;
-    const lane wrist_1_link_222 = wrist_1_link_97 + wrist_1_link_210;
-    const lane wrist_1_link_223 = wrist_1_link_154 + wrist_1_link_214;
-    const lane wrist_1_link_224 = wrist_1_link_136 - wrist_1_link_204;
-    const lane wrist_1_link_225 = wrist_1_link_224 - wrist_1_link_204;
-    const lane wrist_1_link_226 = wrist_1_link_215 + wrist_1_link_225;
-    const lane wrist_1_link_227 = wrist_1_link_79 + wrist_1_link_207;
-    const lane wrist_1_link_228 = wrist_1_link_207 + wrist_1_link_227;
-    const lane wrist_1_link_229 = wrist_1_link_228 - wrist_1_link_217;
-    const lane wrist_1_link_230 = wrist_1_link_123 + wrist_1_link_205;
-    const lane wrist_1_link_231 = wrist_1_link_230 - wrist_1_link_206;
-    const lane wrist_1_link_232 = wrist_1_link_216 + wrist_1_link_231;
-    const lane wrist_1_link_233 = wrist_1_link_142 - wrist_1_link_208;
-    const lane wrist_1_link_234 = wrist_1_link_131 + wrist_1_link_209;
-    const lane wrist_1_link_235 = 0.19163081355599998 + wrist_1_link_226;
-    const lane wrist_1_link_236 = 0.19163081355599998 + wrist_1_link_229;
-    const lane wrist_1_link_237 = 0.004095 + wrist_1_link_139;
-    const lane wrist_1_link_238 = (-0.56875) + wrist_1_link_219;
-    const lane wrist_1_link_239 = 0.56875 + wrist_1_link_221;
-    const lane wrist_1_link_240 = 2.275 + wrist_1_link_197;
-    const lane wrist_1_link_241 = 2.275 + wrist_1_link_109;
-    const lane wrist_1_link_242 = 2.275 + wrist_1_link_200;
+    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
+    const lane forearm_link_0 = wrist_1_link_1 * wrist_1_link_4;
+    const lane forearm_link_1 = wrist_1_link_3 * wrist_1_link_4;
 
-    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; articulated inertia pass
-    const lane forearm_link_0 = 1.0 / wrist_1_link_236;
-    const lane forearm_link_1 = wrist_1_link_232 * forearm_link_0;
-    const lane forearm_link_2 = wrist_1_link_236 * forearm_link_0;
-    const lane forearm_link_3 = wrist_1_link_234 * forearm_link_0;
-    const lane forearm_link_4 = wrist_1_link_239 * forearm_link_0;
-    const lane forearm_link_5 = wrist_1_link_222 * forearm_link_0;
-    const lane forearm_link_6 = wrist_1_link_223 * forearm_link_0;
-    const lane forearm_link_7 = sin_q2 * forearm_link_6;
-    const lane forearm_link_8 = cos_q2 * forearm_link_4;
-    const lane forearm_link_9 = forearm_link_7 + forearm_link_8;
-    const lane forearm_link_10 = cos_q2 * forearm_link_6;
-    const lane forearm_link_11 = sin_q2 * forearm_link_4;
-    const lane forearm_link_12 = forearm_link_10 - forearm_link_11;
-    const lane forearm_link_13 = 0.425 * forearm_link_5;
-    const lane forearm_link_14 = (-0.1197) * forearm_link_12;
-    const lane forearm_link_15 = forearm_link_14 - forearm_link_13;
-    const lane forearm_link_16 = 0.425 * forearm_link_9;
-    const lane forearm_link_17 = (-0.1197) * forearm_link_9;
-    const lane forearm_link_18 = sin_q2 * forearm_link_3;
-    const lane forearm_link_19 = cos_q2 * forearm_link_1;
-    const lane forearm_link_20 = forearm_link_18 + forearm_link_19;
-    const lane forearm_link_21 = cos_q2 * forearm_link_3;
-    const lane forearm_link_22 = sin_q2 * forearm_link_1;
-    const lane forearm_link_23 = forearm_link_21 - forearm_link_22;
-    const lane forearm_link_24 = forearm_link_15 + forearm_link_20;
-    const lane forearm_link_25 = forearm_link_2 + forearm_link_16;
-    const lane forearm_link_26 = forearm_link_23 - forearm_link_17;
-    const lane forearm_link_27 = wrist_1_link_26 * forearm_link_1;
-    const lane forearm_link_28 = wrist_1_link_26 * forearm_link_2;
-    const lane forearm_link_29 = wrist_1_link_26 * forearm_link_3;
-    const lane forearm_link_30 = wrist_1_link_26 * forearm_link_4;
-    const lane forearm_link_31 = wrist_1_link_26 * forearm_link_5;
-    const lane forearm_link_32 = wrist_1_link_26 * forearm_link_6;
-    const lane forearm_link_33 = wrist_1_link_25 - forearm_link_27;
-    const lane forearm_link_34 = wrist_1_link_26 - forearm_link_28;
-    const lane forearm_link_35 = wrist_1_link_24 - forearm_link_29;
-    const lane forearm_link_36 = wrist_1_link_13 - forearm_link_30;
-    const lane forearm_link_37 = wrist_1_link_9 - forearm_link_31;
-    const lane forearm_link_38 = wrist_1_link_16 - forearm_link_32;
-    const lane forearm_link_39 = sin_q2 * forearm_link_38;
-    const lane forearm_link_40 = cos_q2 * forearm_link_36;
-    const lane forearm_link_41 = forearm_link_39 + forearm_link_40;
-    const lane forearm_link_42 = cos_q2 * forearm_link_38;
-    const lane forearm_link_43 = sin_q2 * forearm_link_36;
-    const lane forearm_link_44 = forearm_link_42 - forearm_link_43;
-    const lane forearm_link_45 = 0.425 * forearm_link_37;
-    const lane forearm_link_46 = (-0.1197) * forearm_link_44;
-    const lane forearm_link_47 = forearm_link_46 - forearm_link_45;
-    const lane forearm_link_48 = 0.425 * forearm_link_41;
-    const lane forearm_link_49 = (-0.1197) * forearm_link_41;
-    const lane forearm_link_50 = sin_q2 * forearm_link_35;
-    const lane forearm_link_51 = cos_q2 * forearm_link_33;
-    const lane forearm_link_52 = forearm_link_50 + forearm_link_51;
-    const lane forearm_link_53 = cos_q2 * forearm_link_35;
-    const lane forearm_link_54 = sin_q2 * forearm_link_33;
-    const lane forearm_link_55 = forearm_link_53 - forearm_link_54;
-    const lane forearm_link_56 = forearm_link_47 + forearm_link_52;
-    const lane forearm_link_57 = forearm_link_34 + forearm_link_48;
-    const lane forearm_link_58 = forearm_link_55 - forearm_link_49;
-    const lane forearm_link_59 = wrist_1_link_51 * forearm_link_1;
-    const lane forearm_link_60 = wrist_1_link_51 * forearm_link_2;
-    const lane forearm_link_61 = wrist_1_link_51 * forearm_link_3;
-    const lane forearm_link_62 = wrist_1_link_51 * forearm_link_4;
-    const lane forearm_link_63 = wrist_1_link_51 * forearm_link_5;
-    const lane forearm_link_64 = wrist_1_link_51 * forearm_link_6;
-    const lane forearm_link_65 = wrist_1_link_50 - forearm_link_59;
-    const lane forearm_link_66 = wrist_1_link_51 - forearm_link_60;
-    const lane forearm_link_67 = wrist_1_link_49 - forearm_link_61;
-    const lane forearm_link_68 = wrist_1_link_38 + forearm_link_62;
-    const lane forearm_link_69 = wrist_1_link_31 + forearm_link_63;
-    const lane forearm_link_70 = wrist_1_link_41 - forearm_link_64;
-    const lane forearm_link_71 = sin_q2 * forearm_link_70;
-    const lane forearm_link_72 = cos_q2 * forearm_link_68;
-    const lane forearm_link_73 = forearm_link_71 - forearm_link_72;
-    const lane forearm_link_74 = cos_q2 * forearm_link_70;
-    const lane forearm_link_75 = sin_q2 * forearm_link_68;
-    const lane forearm_link_76 = forearm_link_74 + forearm_link_75;
-    const lane forearm_link_77 = forearm_link_69 * (-0.425);
-    const lane forearm_link_78 = (-0.1197) * forearm_link_76;
-    const lane forearm_link_79 = forearm_link_78 - forearm_link_77;
-    const lane forearm_link_80 = 0.425 * forearm_link_73;
-    const lane forearm_link_81 = (-0.1197) * forearm_link_73;
-    const lane forearm_link_82 = sin_q2 * forearm_link_67;
-    const lane forearm_link_83 = cos_q2 * forearm_link_65;
-    const lane forearm_link_84 = forearm_link_82 + forearm_link_83;
-    const lane forearm_link_85 = cos_q2 * forearm_link_67;
-    const lane forearm_link_86 = sin_q2 * forearm_link_65;
-    const lane forearm_link_87 = forearm_link_85 - forearm_link_86;
-    const lane forearm_link_88 = forearm_link_79 + forearm_link_84;
-    const lane forearm_link_89 = forearm_link_66 + forearm_link_80;
-    const lane forearm_link_90 = forearm_link_87 - forearm_link_81;
-    const lane forearm_link_91 = wrist_1_link_75 * forearm_link_1;
-    const lane forearm_link_92 = wrist_1_link_75 * forearm_link_2;
-    const lane forearm_link_93 = wrist_1_link_75 * forearm_link_3;
-    const lane forearm_link_94 = wrist_1_link_75 * forearm_link_4;
-    const lane forearm_link_95 = wrist_1_link_75 * forearm_link_5;
-    const lane forearm_link_96 = wrist_1_link_75 * forearm_link_6;
-    const lane forearm_link_97 = wrist_1_link_74 + forearm_link_91;
-    const lane forearm_link_98 = wrist_1_link_75 - forearm_link_92;
-    const lane forearm_link_99 = wrist_1_link_73 - forearm_link_93;
-    const lane forearm_link_100 = wrist_1_link_62 + forearm_link_94;
-    const lane forearm_link_101 = wrist_1_link_56 + forearm_link_95;
-    const lane forearm_link_102 = wrist_1_link_65 - forearm_link_96;
-    const lane forearm_link_103 = sin_q2 * forearm_link_102;
-    const lane forearm_link_104 = cos_q2 * forearm_link_100;
-    const lane forearm_link_105 = forearm_link_103 - forearm_link_104;
-    const lane forearm_link_106 = cos_q2 * forearm_link_102;
-    const lane forearm_link_107 = sin_q2 * forearm_link_100;
-    const lane forearm_link_108 = forearm_link_106 + forearm_link_107;
-    const lane forearm_link_109 = (-0.425) * forearm_link_101;
-    const lane forearm_link_110 = (-0.1197) * forearm_link_108;
-    const lane forearm_link_111 = forearm_link_110 - forearm_link_109;
-    const lane forearm_link_112 = 0.425 * forearm_link_105;
-    const lane forearm_link_113 = (-0.1197) * forearm_link_105;
-    const lane forearm_link_114 = sin_q2 * forearm_link_99;
-    const lane forearm_link_115 = cos_q2 * forearm_link_97;
-    const lane forearm_link_116 = forearm_link_114 - forearm_link_115;
-    const lane forearm_link_117 = cos_q2 * forearm_link_99;
-    const lane forearm_link_118 = sin_q2 * forearm_link_97;
-    const lane forearm_link_119 = forearm_link_117 + forearm_link_118;
-    const lane forearm_link_120 = forearm_link_111 + forearm_link_116;
-    const lane forearm_link_121 = forearm_link_98 + forearm_link_112;
-    const lane forearm_link_122 = forearm_link_119 - forearm_link_113;
-    const lane forearm_link_123 = wrist_1_link_232 * forearm_link_1;
-    const lane forearm_link_124 = wrist_1_link_235 - forearm_link_123;
-    const lane forearm_link_125 = wrist_1_link_236 * forearm_link_2;
-    const lane forearm_link_126 = wrist_1_link_236 - forearm_link_125;
-    const lane forearm_link_127 = wrist_1_link_234 * forearm_link_3;
-    const lane forearm_link_128 = wrist_1_link_237 - forearm_link_127;
-    const lane forearm_link_129 = wrist_1_link_232 * forearm_link_2;
-    const lane forearm_link_130 = wrist_1_link_232 - forearm_link_129;
-    const lane forearm_link_131 = wrist_1_link_232 * forearm_link_3;
-    const lane forearm_link_132 = wrist_1_link_233 - forearm_link_131;
-    const lane forearm_link_133 = wrist_1_link_236 * forearm_link_3;
-    const lane forearm_link_134 = wrist_1_link_234 - forearm_link_133;
-    const lane forearm_link_135 = wrist_1_link_232 * forearm_link_4;
-    const lane forearm_link_136 = wrist_1_link_218 - forearm_link_135;
-    const lane forearm_link_137 = wrist_1_link_232 * forearm_link_5;
-    const lane forearm_link_138 = wrist_1_link_238 - forearm_link_137;
-    const lane forearm_link_139 = wrist_1_link_232 * forearm_link_6;
-    const lane forearm_link_140 = wrist_1_link_220 - forearm_link_139;
-    const lane forearm_link_141 = wrist_1_link_236 * forearm_link_4;
-    const lane forearm_link_142 = wrist_1_link_239 - forearm_link_141;
-    const lane forearm_link_143 = wrist_1_link_236 * forearm_link_5;
-    const lane forearm_link_144 = wrist_1_link_222 - forearm_link_143;
-    const lane forearm_link_145 = wrist_1_link_236 * forearm_link_6;
-    const lane forearm_link_146 = wrist_1_link_223 - forearm_link_145;
-    const lane forearm_link_147 = wrist_1_link_234 * forearm_link_4;
-    const lane forearm_link_148 = wrist_1_link_172 + forearm_link_147;
-    const lane forearm_link_149 = wrist_1_link_234 * forearm_link_5;
-    const lane forearm_link_150 = wrist_1_link_175 + forearm_link_149;
-    const lane forearm_link_151 = wrist_1_link_234 * forearm_link_6;
-    const lane forearm_link_152 = wrist_1_link_178 - forearm_link_151;
-    const lane forearm_link_153 = wrist_1_link_239 * forearm_link_4;
-    const lane forearm_link_154 = wrist_1_link_240 - forearm_link_153;
-    const lane forearm_link_155 = wrist_1_link_222 * forearm_link_5;
-    const lane forearm_link_156 = wrist_1_link_241 - forearm_link_155;
-    const lane forearm_link_157 = wrist_1_link_223 * forearm_link_6;
-    const lane forearm_link_158 = wrist_1_link_242 - forearm_link_157;
-    const lane forearm_link_159 = wrist_1_link_239 * forearm_link_5;
-    const lane forearm_link_160 = wrist_1_link_184 - forearm_link_159;
-    const lane forearm_link_161 = wrist_1_link_239 * forearm_link_6;
-    const lane forearm_link_162 = wrist_1_link_203 - forearm_link_161;
-    const lane forearm_link_163 = wrist_1_link_222 * forearm_link_6;
-    const lane forearm_link_164 = wrist_1_link_192 - forearm_link_163;
-    const lane forearm_link_165 = sin_q2 * forearm_link_132;
-    const lane forearm_link_166 = cos_q2 * forearm_link_124;
-    const lane forearm_link_167 = forearm_link_165 + forearm_link_166;
-    const lane forearm_link_168 = sin_q2 * forearm_link_134;
-    const lane forearm_link_169 = cos_q2 * forearm_link_130;
-    const lane forearm_link_170 = forearm_link_168 + forearm_link_169;
-    const lane forearm_link_171 = sin_q2 * forearm_link_128;
-    const lane forearm_link_172 = cos_q2 * forearm_link_132;
-    const lane forearm_link_173 = forearm_link_171 + forearm_link_172;
-    const lane forearm_link_174 = sin_q2 * forearm_link_124;
-    const lane forearm_link_175 = forearm_link_172 - forearm_link_174;
-    const lane forearm_link_176 = cos_q2 * forearm_link_134;
-    const lane forearm_link_177 = sin_q2 * forearm_link_130;
-    const lane forearm_link_178 = forearm_link_176 - forearm_link_177;
-    const lane forearm_link_179 = cos_q2 * forearm_link_128;
-    const lane forearm_link_180 = forearm_link_179 - forearm_link_165;
-    const lane forearm_link_181 = sin_q2 * forearm_link_173;
-    const lane forearm_link_182 = cos_q2 * forearm_link_167;
-    const lane forearm_link_183 = forearm_link_181 + forearm_link_182;
-    const lane forearm_link_184 = cos_q2 * forearm_link_180;
-    const lane forearm_link_185 = sin_q2 * forearm_link_175;
-    const lane forearm_link_186 = forearm_link_184 - forearm_link_185;
-    const lane forearm_link_187 = sin_q2 * forearm_link_180;
-    const lane forearm_link_188 = cos_q2 * forearm_link_175;
-    const lane forearm_link_189 = forearm_link_187 + forearm_link_188;
-    const lane forearm_link_190 = sin_q2 * forearm_link_140;
-    const lane forearm_link_191 = cos_q2 * forearm_link_136;
-    const lane forearm_link_192 = forearm_link_190 + forearm_link_191;
-    const lane forearm_link_193 = cos_q2 * forearm_link_140;
-    const lane forearm_link_194 = sin_q2 * forearm_link_136;
-    const lane forearm_link_195 = forearm_link_193 - forearm_link_194;
-    const lane forearm_link_196 = sin_q2 * forearm_link_146;
-    const lane forearm_link_197 = cos_q2 * forearm_link_142;
-    const lane forearm_link_198 = forearm_link_196 + forearm_link_197;
-    const lane forearm_link_199 = cos_q2 * forearm_link_146;
-    const lane forearm_link_200 = sin_q2 * forearm_link_142;
-    const lane forearm_link_201 = forearm_link_199 - forearm_link_200;
-    const lane forearm_link_202 = sin_q2 * forearm_link_152;
-    const lane forearm_link_203 = cos_q2 * forearm_link_148;
-    const lane forearm_link_204 = forearm_link_202 - forearm_link_203;
-    const lane forearm_link_205 = cos_q2 * forearm_link_152;
-    const lane forearm_link_206 = sin_q2 * forearm_link_148;
-    const lane forearm_link_207 = forearm_link_205 + forearm_link_206;
-    const lane forearm_link_208 = sin_q2 * forearm_link_204;
-    const lane forearm_link_209 = cos_q2 * forearm_link_192;
-    const lane forearm_link_210 = forearm_link_208 + forearm_link_209;
-    const lane forearm_link_211 = sin_q2 * forearm_link_150;
-    const lane forearm_link_212 = cos_q2 * forearm_link_138;
-    const lane forearm_link_213 = forearm_link_212 - forearm_link_211;
-    const lane forearm_link_214 = sin_q2 * forearm_link_207;
-    const lane forearm_link_215 = cos_q2 * forearm_link_195;
-    const lane forearm_link_216 = forearm_link_214 + forearm_link_215;
-    const lane forearm_link_217 = cos_q2 * forearm_link_204;
-    const lane forearm_link_218 = sin_q2 * forearm_link_192;
-    const lane forearm_link_219 = forearm_link_217 - forearm_link_218;
-    const lane forearm_link_220 = cos_q2 * forearm_link_150;
-    const lane forearm_link_221 = sin_q2 * forearm_link_138;
-    const lane forearm_link_222 = forearm_link_220 + forearm_link_221;
-    const lane forearm_link_223 = cos_q2 * forearm_link_207;
-    const lane forearm_link_224 = sin_q2 * forearm_link_195;
-    const lane forearm_link_225 = forearm_link_223 - forearm_link_224;
-    const lane forearm_link_226 = sin_q2 * forearm_link_162;
-    const lane forearm_link_227 = cos_q2 * forearm_link_154;
-    const lane forearm_link_228 = forearm_link_226 + forearm_link_227;
-    const lane forearm_link_229 = sin_q2 * forearm_link_164;
-    const lane forearm_link_230 = cos_q2 * forearm_link_160;
-    const lane forearm_link_231 = forearm_link_229 + forearm_link_230;
-    const lane forearm_link_232 = sin_q2 * forearm_link_158;
-    const lane forearm_link_233 = cos_q2 * forearm_link_162;
-    const lane forearm_link_234 = forearm_link_232 + forearm_link_233;
-    const lane forearm_link_235 = sin_q2 * forearm_link_154;
-    const lane forearm_link_236 = forearm_link_233 - forearm_link_235;
-    const lane forearm_link_237 = cos_q2 * forearm_link_164;
-    const lane forearm_link_238 = sin_q2 * forearm_link_160;
-    const lane forearm_link_239 = forearm_link_237 - forearm_link_238;
-    const lane forearm_link_240 = cos_q2 * forearm_link_158;
-    const lane forearm_link_241 = forearm_link_240 - forearm_link_226;
-    const lane forearm_link_242 = sin_q2 * forearm_link_234;
-    const lane forearm_link_243 = cos_q2 * forearm_link_228;
-    const lane forearm_link_244 = forearm_link_242 + forearm_link_243;
-    const lane forearm_link_245 = cos_q2 * forearm_link_241;
-    const lane forearm_link_246 = sin_q2 * forearm_link_236;
-    const lane forearm_link_247 = forearm_link_245 - forearm_link_246;
-    const lane forearm_link_248 = sin_q2 * forearm_link_241;
-    const lane forearm_link_249 = cos_q2 * forearm_link_236;
-    const lane forearm_link_250 = forearm_link_248 + forearm_link_249;
-    const lane forearm_link_251 = (-0.1197) * forearm_link_216;
-    const lane forearm_link_252 = 0.425 * forearm_link_213;
-    const lane forearm_link_253 = forearm_link_252 - forearm_link_251;
-    const lane forearm_link_254 = 0.425 * forearm_link_210;
-    const lane forearm_link_255 = (-0.1197) * forearm_link_210;
-    const lane forearm_link_256 = (-0.1197) * forearm_link_201;
-    const lane forearm_link_257 = 0.425 * forearm_link_144;
-    const lane forearm_link_258 = forearm_link_257 - forearm_link_256;
-    const lane forearm_link_259 = 0.425 * forearm_link_198;
-    const lane forearm_link_260 = (-0.1197) * forearm_link_198;
-    const lane forearm_link_261 = (-0.1197) * forearm_link_225;
-    const lane forearm_link_262 = (-0.425) * forearm_link_222;
-    const lane forearm_link_263 = forearm_link_262 - forearm_link_261;
-    const lane forearm_link_264 = 0.425 * forearm_link_219;
-    const lane forearm_link_265 = (-0.1197) * forearm_link_219;
-    const lane forearm_link_266 = (-0.1197) * forearm_link_250;
-    const lane forearm_link_267 = 0.425 * forearm_link_231;
-    const lane forearm_link_268 = forearm_link_267 - forearm_link_266;
-    const lane forearm_link_269 = 0.425 * forearm_link_244;
-    const lane forearm_link_270 = (-0.1197) * forearm_link_244;
-    const lane forearm_link_271 = (-0.1197) * forearm_link_239;
-    const lane forearm_link_272 = 0.425 * forearm_link_156;
-    const lane forearm_link_273 = forearm_link_272 - forearm_link_271;
-    const lane forearm_link_274 = (-0.1197) * forearm_link_231;
-    const lane forearm_link_275 = (-0.1197) * forearm_link_247;
-    const lane forearm_link_276 = 0.425 * forearm_link_239;
-    const lane forearm_link_277 = forearm_link_276 - forearm_link_275;
-    const lane forearm_link_278 = 0.425 * forearm_link_250;
-    const lane forearm_link_279 = 0.425 * forearm_link_273;
-    const lane forearm_link_280 = (-0.1197) * forearm_link_277;
-    const lane forearm_link_281 = forearm_link_280 - forearm_link_279;
-    const lane forearm_link_282 = (-0.425) * forearm_link_267;
-    const lane forearm_link_283 = forearm_link_278 * 0.1197;
-    const lane forearm_link_284 = forearm_link_283 - forearm_link_282;
-    const lane forearm_link_285 = (-0.425) * forearm_link_269;
-    const lane forearm_link_286 = 0.425 * forearm_link_274;
-    const lane forearm_link_287 = (-0.1197) * forearm_link_266;
-    const lane forearm_link_288 = forearm_link_287 - forearm_link_286;
-    const lane forearm_link_289 = 0.425 * forearm_link_270;
-    const lane forearm_link_290 = (-0.1197) * forearm_link_270;
-    const lane forearm_link_291 = forearm_link_210 - forearm_link_268;
-    const lane forearm_link_292 = forearm_link_216 - forearm_link_277;
-    const lane forearm_link_293 = forearm_link_198 + forearm_link_269;
-    const lane forearm_link_294 = forearm_link_201 + forearm_link_278;
-    const lane forearm_link_295 = forearm_link_219 - forearm_link_270;
-    const lane forearm_link_296 = forearm_link_225 - forearm_link_266;
-    const lane forearm_link_297 = forearm_link_183 - forearm_link_253;
-    const lane forearm_link_298 = forearm_link_297 - forearm_link_253;
-    const lane forearm_link_299 = forearm_link_298 - forearm_link_281;
-    const lane forearm_link_300 = forearm_link_126 + forearm_link_259;
-    const lane forearm_link_301 = forearm_link_259 + forearm_link_300;
-    const lane forearm_link_302 = forearm_link_301 - forearm_link_285;
-    const lane forearm_link_303 = forearm_link_186 - forearm_link_265;
-    const lane forearm_link_304 = forearm_link_303 - forearm_link_265;
-    const lane forearm_link_305 = forearm_link_290 + forearm_link_304;
-    const lane forearm_link_306 = forearm_link_170 + forearm_link_254;
-    const lane forearm_link_307 = forearm_link_306 - forearm_link_258;
-    const lane forearm_link_308 = forearm_link_307 - forearm_link_284;
-    const lane forearm_link_309 = forearm_link_189 - forearm_link_255;
-    const lane forearm_link_310 = forearm_link_309 - forearm_link_263;
-    const lane forearm_link_311 = forearm_link_310 - forearm_link_288;
-    const lane forearm_link_312 = forearm_link_178 - forearm_link_260;
-    const lane forearm_link_313 = forearm_link_264 + forearm_link_312;
-    const lane forearm_link_314 = forearm_link_313 - forearm_link_289;
-    const lane forearm_link_315 = 0.8849018759100001 + forearm_link_299;
-    const lane forearm_link_316 = 0.8849018759100001 + forearm_link_302;
-    const lane forearm_link_317 = 0.0151074 + forearm_link_305;
-    const lane forearm_link_318 = 2.3500400000000004 + forearm_link_293;
-    const lane forearm_link_319 = 8.393 + forearm_link_244;
-    const lane forearm_link_320 = 8.393 + forearm_link_247;
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
+    const lane upper_arm_link_4 = sin_q2 * forearm_link_1;
+    const lane upper_arm_link_5 = cos_q2 * forearm_link_0;
+    const lane upper_arm_link_6 = upper_arm_link_5 - upper_arm_link_4;
+    const lane upper_arm_link_7 = cos_q2 * forearm_link_1;
+    const lane upper_arm_link_8 = sin_q2 * forearm_link_0;
+    const lane upper_arm_link_9 = upper_arm_link_7 + upper_arm_link_8;
 
-    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; articulated inertia pass
-    const lane upper_arm_link_4 = 1.0 / forearm_link_316;
-    const lane upper_arm_link_5 = forearm_link_308 * upper_arm_link_4;
-    const lane upper_arm_link_6 = forearm_link_314 * upper_arm_link_4;
-    const lane upper_arm_link_7 = forearm_link_318 * upper_arm_link_4;
-    const lane upper_arm_link_8 = forearm_link_294 * upper_arm_link_4;
-    const lane upper_arm_link_9 = upper_arm_link_3 * upper_arm_link_8;
-    const lane upper_arm_link_10 = upper_arm_link_1 * upper_arm_link_7;
-    const lane upper_arm_link_11 = upper_arm_link_9 + upper_arm_link_10;
-    const lane upper_arm_link_12 = 0.13585 * upper_arm_link_11;
-    const lane upper_arm_link_13 = upper_arm_link_1 * upper_arm_link_6;
-    const lane upper_arm_link_14 = upper_arm_link_3 * upper_arm_link_5;
+    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; a descendant's column of M carried up
+    const lane shoulder_link_0 = upper_arm_link_1 * upper_arm_link_9;
+    const lane shoulder_link_1 = upper_arm_link_3 * upper_arm_link_6;
+    const lane shoulder_link_2 = shoulder_link_0 + shoulder_link_1;
+
+    // ---- link 'wrist_2_link' (4) <- 'wrist_1_link' (3); joint 'wrist_2_joint': revolute +z; composite inertia
+    const lane wrist_2_link_0 = cos_q4 * wrist_3_link_16;
+    const lane wrist_2_link_1 = sin_q4 * (-0.12999255384415);
+    const lane wrist_2_link_2 = cos_q4 * wrist_3_link_12;
+    const lane wrist_2_link_3 = sin_q4 * wrist_3_link_16;
+    const lane wrist_2_link_4 = cos_q4 * 0.12999255384415;
+    const lane wrist_2_link_5 = sin_q4 * wrist_3_link_12;
+    const lane wrist_2_link_6 = sin_q4 * wrist_2_link_1;
+    const lane wrist_2_link_7 = cos_q4 * wrist_2_link_0;
+    const lane wrist_2_link_8 = wrist_2_link_7 - wrist_2_link_6;
+    const lane wrist_2_link_9 = cos_q4 * wrist_2_link_4;
+    const lane wrist_2_link_10 = sin_q4 * wrist_2_link_3;
+    const lane wrist_2_link_11 = wrist_2_link_9 + wrist_2_link_10;
+    const lane wrist_2_link_12 = sin_q4 * wrist_2_link_4;
+    const lane wrist_2_link_13 = cos_q4 * wrist_2_link_3;
+    const lane wrist_2_link_14 = wrist_2_link_13 - wrist_2_link_12;
+    const lane wrist_2_link_15 = wrist_2_link_8 + 0.0121682781;
+    const lane wrist_2_link_16 = wrist_2_link_11 - 0.0121682781;
+    const lane wrist_2_link_17 = 0.0121682781 + wrist_2_link_16;
+    const lane wrist_2_link_18 = wrist_3_link_17 + 0.0121682781;
+    const lane wrist_2_link_19 = wrist_2_link_5 - 0.0016539803549999999;
+    const lane wrist_2_link_20 = 0.111172755531 + wrist_2_link_15;
+    const lane wrist_2_link_21 = 0.111172755531 + wrist_2_link_17;
+    const lane wrist_2_link_22 = 0.21942 + wrist_2_link_18;
+
+    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
+    const lane forearm_link_2 = wrist_1_link_3 * wrist_3_link_17;
+    const lane forearm_link_3 = wrist_1_link_1 * wrist_2_link_2;
+    const lane forearm_link_4 = forearm_link_2 + forearm_link_3;
+    const lane forearm_link_5 = wrist_1_link_1 * wrist_3_link_17;
+    const lane forearm_link_6 = wrist_1_link_3 * wrist_2_link_2;
+    const lane forearm_link_7 = forearm_link_5 - forearm_link_6;
+
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
+    const lane upper_arm_link_10 = sin_q2 * forearm_link_7;
+    const lane upper_arm_link_11 = cos_q2 * forearm_link_4;
+    const lane upper_arm_link_12 = upper_arm_link_10 + upper_arm_link_11;
+    const lane upper_arm_link_13 = cos_q2 * forearm_link_7;
+    const lane upper_arm_link_14 = sin_q2 * forearm_link_4;
     const lane upper_arm_link_15 = upper_arm_link_13 - upper_arm_link_14;
-    const lane upper_arm_link_16 = upper_arm_link_15 - upper_arm_link_12;
-    const lane upper_arm_link_17 = forearm_link_25 * upper_arm_link_5;
-    const lane upper_arm_link_18 = forearm_link_25 * upper_arm_link_6;
-    const lane upper_arm_link_19 = forearm_link_25 * upper_arm_link_7;
-    const lane upper_arm_link_20 = forearm_link_25 * upper_arm_link_8;
-    const lane upper_arm_link_21 = forearm_link_24 - upper_arm_link_17;
-    const lane upper_arm_link_22 = forearm_link_26 - upper_arm_link_18;
-    const lane upper_arm_link_23 = forearm_link_9 - upper_arm_link_19;
-    const lane upper_arm_link_24 = forearm_link_12 - upper_arm_link_20;
-    const lane upper_arm_link_25 = upper_arm_link_3 * upper_arm_link_24;
-    const lane upper_arm_link_26 = upper_arm_link_1 * upper_arm_link_23;
+
+    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; a descendant's column of M carried up
+    const lane shoulder_link_3 = upper_arm_link_1 * upper_arm_link_15;
+    const lane shoulder_link_4 = upper_arm_link_3 * upper_arm_link_12;
+    const lane shoulder_link_5 = shoulder_link_3 - shoulder_link_4;
+
+    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; composite inertia
+    const lane wrist_1_link_6 = wrist_1_link_3 * 0.017784735;
+    const lane wrist_1_link_7 = wrist_1_link_1 * 0.017784735;
+    const lane wrist_1_link_8 = wrist_1_link_7 + 1.030009275;
+    const lane wrist_1_link_9 = wrist_1_link_1 * wrist_2_link_20;
+    const lane wrist_1_link_10 = forearm_link_6 + wrist_1_link_9;
+    const lane wrist_1_link_11 = wrist_1_link_3 * wrist_2_link_19;
+    const lane wrist_1_link_12 = wrist_1_link_1 * wrist_2_link_14;
+    const lane wrist_1_link_13 = wrist_1_link_11 + wrist_1_link_12;
+    const lane wrist_1_link_14 = wrist_1_link_3 * wrist_2_link_22;
+    const lane wrist_1_link_15 = forearm_link_3 + wrist_1_link_14;
+    const lane wrist_1_link_16 = wrist_1_link_3 * wrist_2_link_20;
+    const lane wrist_1_link_17 = forearm_link_3 - wrist_1_link_16;
+    const lane wrist_1_link_18 = wrist_1_link_1 * wrist_2_link_19;
+    const lane wrist_1_link_19 = wrist_1_link_3 * wrist_2_link_14;
+    const lane wrist_1_link_20 = wrist_1_link_18 - wrist_1_link_19;
+    const lane wrist_1_link_21 = wrist_1_link_1 * wrist_2_link_22;
+    const lane wrist_1_link_22 = wrist_1_link_21 - forearm_link_6;
+    const lane wrist_1_link_23 = wrist_1_link_3 * wrist_1_link_15;
+    const lane wrist_1_link_24 = wrist_1_link_1 * wrist_1_link_10;
+    const lane wrist_1_link_25 = wrist_1_link_23 + wrist_1_link_24;
+    const lane wrist_1_link_26 = wrist_1_link_1 * wrist_1_link_22;
+    const lane wrist_1_link_27 = wrist_1_link_3 * wrist_1_link_17;
+    const lane wrist_1_link_28 = wrist_1_link_26 - wrist_1_link_27;
+    const lane wrist_1_link_29 = wrist_1_link_3 * wrist_1_link_22;
+    const lane wrist_1_link_30 = wrist_1_link_1 * wrist_1_link_17;
+    const lane wrist_1_link_31 = wrist_1_link_29 + wrist_1_link_30;
+    const lane wrist_1_link_32 = 0.39225 * wrist_1_link_8;
+    const lane wrist_1_link_33 = 0.39225 * wrist_1_link_7;
+    const lane wrist_1_link_34 = wrist_1_link_32 + wrist_1_link_33;
+    const lane wrist_1_link_35 = wrist_1_link_25 + wrist_1_link_34;
+    const lane wrist_1_link_36 = wrist_2_link_21 + wrist_1_link_34;
+    const lane wrist_1_link_37 = wrist_1_link_28 - wrist_1_link_33;
+    const lane wrist_1_link_38 = wrist_1_link_37 - wrist_1_link_32;
+    const lane wrist_1_link_39 = wrist_1_link_34 + wrist_1_link_38;
+    const lane wrist_1_link_40 = 0.39225 * wrist_1_link_6;
+    const lane wrist_1_link_41 = wrist_1_link_31 - wrist_1_link_40;
+    const lane wrist_1_link_42 = wrist_1_link_20 - 0.051322656825;
+    const lane wrist_1_link_43 = 0.56875 + wrist_1_link_8;
+    const lane wrist_1_link_44 = 0.19163081355599998 + wrist_1_link_35;
+    const lane wrist_1_link_45 = 0.19163081355599998 + wrist_1_link_36;
+    const lane wrist_1_link_46 = 0.004095 + wrist_1_link_39;
+
+    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
+    const lane forearm_link_8 = wrist_1_link_3 * (-0.017784735);
+    const lane forearm_link_9 = wrist_2_link_21 + wrist_1_link_33;
+
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
+    const lane upper_arm_link_16 = sin_q2 * forearm_link_8;
+    const lane upper_arm_link_17 = cos_q2 * wrist_1_link_7;
+    const lane upper_arm_link_18 = upper_arm_link_16 + upper_arm_link_17;
+    const lane upper_arm_link_19 = cos_q2 * forearm_link_8;
+    const lane upper_arm_link_20 = sin_q2 * wrist_1_link_7;
+    const lane upper_arm_link_21 = upper_arm_link_19 - upper_arm_link_20;
+    const lane upper_arm_link_22 = (-0.1197) * upper_arm_link_21;
+    const lane upper_arm_link_23 = 0.425 * upper_arm_link_18;
+    const lane upper_arm_link_24 = (-0.1197) * upper_arm_link_18;
+    const lane upper_arm_link_25 = sin_q2 * wrist_1_link_20;
+    const lane upper_arm_link_26 = cos_q2 * wrist_1_link_13;
     const lane upper_arm_link_27 = upper_arm_link_25 + upper_arm_link_26;
-    const lane upper_arm_link_28 = 0.13585 * upper_arm_link_27;
-    const lane upper_arm_link_29 = upper_arm_link_1 * upper_arm_link_22;
-    const lane upper_arm_link_30 = upper_arm_link_3 * upper_arm_link_21;
-    const lane upper_arm_link_31 = upper_arm_link_29 - upper_arm_link_30;
-    const lane upper_arm_link_32 = upper_arm_link_31 - upper_arm_link_28;
-    const lane upper_arm_link_33 = forearm_link_57 * upper_arm_link_5;
-    const lane upper_arm_link_34 = forearm_link_57 * upper_arm_link_6;
-    const lane upper_arm_link_35 = forearm_link_57 * upper_arm_link_7;
-    const lane upper_arm_link_36 = forearm_link_57 * upper_arm_link_8;
-    const lane upper_arm_link_37 = forearm_link_56 - upper_arm_link_33;
-    const lane upper_arm_link_38 = forearm_link_58 - upper_arm_link_34;
-    const lane upper_arm_link_39 = forearm_link_41 - upper_arm_link_35;
-    const lane upper_arm_link_40 = forearm_link_44 - upper_arm_link_36;
-    const lane upper_arm_link_41 = upper_arm_link_3 * upper_arm_link_40;
-    const lane upper_arm_link_42 = upper_arm_link_1 * upper_arm_link_39;
-    const lane upper_arm_link_43 = upper_arm_link_41 + upper_arm_link_42;
-    const lane upper_arm_link_44 = 0.13585 * upper_arm_link_43;
-    const lane upper_arm_link_45 = upper_arm_link_1 * upper_arm_link_38;
-    const lane upper_arm_link_46 = upper_arm_link_3 * upper_arm_link_37;
+    const lane upper_arm_link_28 = cos_q2 * wrist_1_link_20;
+    const lane upper_arm_link_29 = sin_q2 * wrist_1_link_13;
+    const lane upper_arm_link_30 = upper_arm_link_28 - upper_arm_link_29;
+    const lane upper_arm_link_31 = upper_arm_link_22 + upper_arm_link_27;
+    const lane upper_arm_link_32 = forearm_link_9 + upper_arm_link_23;
+    const lane upper_arm_link_33 = upper_arm_link_30 - upper_arm_link_24;
+
+    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; a descendant's column of M carried up
+    const lane shoulder_link_6 = upper_arm_link_3 * upper_arm_link_21;
+    const lane shoulder_link_7 = upper_arm_link_1 * upper_arm_link_18;
+    const lane shoulder_link_8 = shoulder_link_6 + shoulder_link_7;
+    const lane shoulder_link_9 = 0.13585 * shoulder_link_8;
+    const lane shoulder_link_10 = upper_arm_link_1 * upper_arm_link_33;
+    const lane shoulder_link_11 = upper_arm_link_3 * upper_arm_link_31;
+    const lane shoulder_link_12 = shoulder_link_10 - shoulder_link_11;
+    const lane shoulder_link_13 = shoulder_link_12 - shoulder_link_9;
+
+    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; composite inertia
+    const lane forearm_link_10 = sin_q2 * wrist_1_link_43;
+    const lane forearm_link_11 = cos_q2 * wrist_1_link_6;
+    const lane forearm_link_12 = forearm_link_10 + forearm_link_11;
+    const lane forearm_link_13 = cos_q2 * wrist_1_link_43;
+    const lane forearm_link_14 = sin_q2 * wrist_1_link_6;
+    const lane forearm_link_15 = forearm_link_13 - forearm_link_14;
+    const lane forearm_link_16 = forearm_link_15 + 2.0828824999999997;
+    const lane forearm_link_17 = sin_q2 * wrist_1_link_41;
+    const lane forearm_link_18 = cos_q2 * wrist_1_link_44;
+    const lane forearm_link_19 = forearm_link_17 + forearm_link_18;
+    const lane forearm_link_20 = sin_q2 * wrist_1_link_42;
+    const lane forearm_link_21 = upper_arm_link_26 + forearm_link_20;
+    const lane forearm_link_22 = sin_q2 * wrist_1_link_46;
+    const lane forearm_link_23 = cos_q2 * wrist_1_link_41;
+    const lane forearm_link_24 = forearm_link_22 + forearm_link_23;
+    const lane forearm_link_25 = sin_q2 * wrist_1_link_44;
+    const lane forearm_link_26 = forearm_link_23 - forearm_link_25;
+    const lane forearm_link_27 = cos_q2 * wrist_1_link_42;
+    const lane forearm_link_28 = forearm_link_27 - upper_arm_link_29;
+    const lane forearm_link_29 = cos_q2 * wrist_1_link_46;
+    const lane forearm_link_30 = forearm_link_29 - forearm_link_17;
+    const lane forearm_link_31 = sin_q2 * forearm_link_24;
+    const lane forearm_link_32 = cos_q2 * forearm_link_19;
+    const lane forearm_link_33 = forearm_link_31 + forearm_link_32;
+    const lane forearm_link_34 = cos_q2 * forearm_link_30;
+    const lane forearm_link_35 = sin_q2 * forearm_link_26;
+    const lane forearm_link_36 = forearm_link_34 - forearm_link_35;
+    const lane forearm_link_37 = sin_q2 * forearm_link_30;
+    const lane forearm_link_38 = cos_q2 * forearm_link_26;
+    const lane forearm_link_39 = forearm_link_37 + forearm_link_38;
+    const lane forearm_link_40 = 0.425 * forearm_link_16;
+    const lane forearm_link_41 = forearm_link_40 + 0.054558784790999994;
+    const lane forearm_link_42 = 0.425 * forearm_link_15;
+    const lane forearm_link_43 = forearm_link_42 + (-0.01566175149);
+    const lane forearm_link_44 = forearm_link_41 + forearm_link_43;
+    const lane forearm_link_45 = forearm_link_33 + forearm_link_44;
+    const lane forearm_link_46 = wrist_1_link_45 - (-0.01566175149);
+    const lane forearm_link_47 = forearm_link_46 - 0.054558784790999994;
+    const lane forearm_link_48 = forearm_link_44 + forearm_link_47;
+    const lane forearm_link_49 = forearm_link_36 - forearm_link_42;
+    const lane forearm_link_50 = forearm_link_49 - forearm_link_40;
+    const lane forearm_link_51 = forearm_link_44 + forearm_link_50;
+    const lane forearm_link_52 = (-0.1197) * forearm_link_12;
+    const lane forearm_link_53 = forearm_link_21 - forearm_link_52;
+    const lane forearm_link_54 = 0.425 * forearm_link_12;
+    const lane forearm_link_55 = forearm_link_39 - forearm_link_54;
+    const lane forearm_link_56 = (-0.1197) * forearm_link_16;
+    const lane forearm_link_57 = forearm_link_28 - 0.0556077225;
+    const lane forearm_link_58 = forearm_link_57 - forearm_link_56;
+    const lane forearm_link_59 = 2.3500400000000004 + forearm_link_16;
+    const lane forearm_link_60 = 0.8849018759100001 + forearm_link_45;
+    const lane forearm_link_61 = 0.8849018759100001 + forearm_link_48;
+    const lane forearm_link_62 = 0.0151074 + forearm_link_51;
+
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
+    const lane upper_arm_link_34 = forearm_link_12 * 0.1197;
+    const lane upper_arm_link_35 = (-0.1197) * forearm_link_15;
+    const lane upper_arm_link_36 = forearm_link_21 + upper_arm_link_34;
+    const lane upper_arm_link_37 = wrist_1_link_45 + forearm_link_42;
+    const lane upper_arm_link_38 = forearm_link_28 - upper_arm_link_35;
+
+    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; a descendant's column of M carried up
+    const lane shoulder_link_14 = upper_arm_link_3 * forearm_link_12;
+    const lane shoulder_link_15 = upper_arm_link_1 * forearm_link_15;
+    const lane shoulder_link_16 = shoulder_link_15 - shoulder_link_14;
+    const lane shoulder_link_17 = 0.13585 * shoulder_link_16;
+    const lane shoulder_link_18 = upper_arm_link_1 * upper_arm_link_38;
+    const lane shoulder_link_19 = upper_arm_link_3 * upper_arm_link_36;
+    const lane shoulder_link_20 = shoulder_link_18 - shoulder_link_19;
+    const lane shoulder_link_21 = shoulder_link_20 - shoulder_link_17;
+
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; composite inertia
+    const lane upper_arm_link_39 = upper_arm_link_1 * forearm_link_59;
+    const lane upper_arm_link_40 = upper_arm_link_39 - shoulder_link_14;
+    const lane upper_arm_link_41 = upper_arm_link_3 * forearm_link_55;
+    const lane upper_arm_link_42 = upper_arm_link_1 * forearm_link_55;
+    const lane upper_arm_link_43 = upper_arm_link_3 * forearm_link_60;
+    const lane upper_arm_link_44 = upper_arm_link_42 - upper_arm_link_43;
+    const lane upper_arm_link_45 = upper_arm_link_1 * forearm_link_58;
+    const lane upper_arm_link_46 = upper_arm_link_3 * forearm_link_53;
     const lane upper_arm_link_47 = upper_arm_link_45 - upper_arm_link_46;
-    const lane upper_arm_link_48 = upper_arm_link_47 - upper_arm_link_44;
-    const lane upper_arm_link_49 = forearm_link_89 * upper_arm_link_5;
-    const lane upper_arm_link_50 = forearm_link_89 * upper_arm_link_6;
-    const lane upper_arm_link_51 = forearm_link_89 * upper_arm_link_7;
-    const lane upper_arm_link_52 = forearm_link_89 * upper_arm_link_8;
-    const lane upper_arm_link_53 = forearm_link_88 - upper_arm_link_49;
-    const lane upper_arm_link_54 = forearm_link_90 - upper_arm_link_50;
-    const lane upper_arm_link_55 = forearm_link_73 - upper_arm_link_51;
-    const lane upper_arm_link_56 = forearm_link_76 - upper_arm_link_52;
-    const lane upper_arm_link_57 = upper_arm_link_3 * upper_arm_link_56;
-    const lane upper_arm_link_58 = upper_arm_link_1 * upper_arm_link_55;
-    const lane upper_arm_link_59 = upper_arm_link_57 + upper_arm_link_58;
-    const lane upper_arm_link_60 = 0.13585 * upper_arm_link_59;
-    const lane upper_arm_link_61 = upper_arm_link_1 * upper_arm_link_54;
-    const lane upper_arm_link_62 = upper_arm_link_3 * upper_arm_link_53;
-    const lane upper_arm_link_63 = upper_arm_link_61 - upper_arm_link_62;
-    const lane upper_arm_link_64 = upper_arm_link_63 - upper_arm_link_60;
-    const lane upper_arm_link_65 = forearm_link_121 * upper_arm_link_5;
-    const lane upper_arm_link_66 = forearm_link_121 * upper_arm_link_6;
-    const lane upper_arm_link_67 = forearm_link_121 * upper_arm_link_7;
-    const lane upper_arm_link_68 = forearm_link_121 * upper_arm_link_8;
-    const lane upper_arm_link_69 = forearm_link_120 - upper_arm_link_65;
-    const lane upper_arm_link_70 = forearm_link_122 - upper_arm_link_66;
-    const lane upper_arm_link_71 = forearm_link_105 - upper_arm_link_67;
-    const lane upper_arm_link_72 = forearm_link_108 - upper_arm_link_68;
-    const lane upper_arm_link_73 = upper_arm_link_3 * upper_arm_link_72;
-    const lane upper_arm_link_74 = upper_arm_link_1 * upper_arm_link_71;
-    const lane upper_arm_link_75 = upper_arm_link_73 + upper_arm_link_74;
-    const lane upper_arm_link_76 = 0.13585 * upper_arm_link_75;
-    const lane upper_arm_link_77 = upper_arm_link_1 * upper_arm_link_70;
-    const lane upper_arm_link_78 = upper_arm_link_3 * upper_arm_link_69;
-    const lane upper_arm_link_79 = upper_arm_link_77 - upper_arm_link_78;
-    const lane upper_arm_link_80 = upper_arm_link_79 - upper_arm_link_76;
-    const lane upper_arm_link_81 = forearm_link_308 * upper_arm_link_5;
-    const lane upper_arm_link_82 = forearm_link_315 - upper_arm_link_81;
-    const lane upper_arm_link_83 = forearm_link_314 * upper_arm_link_6;
-    const lane upper_arm_link_84 = forearm_link_317 - upper_arm_link_83;
-    const lane upper_arm_link_85 = forearm_link_308 * upper_arm_link_6;
-    const lane upper_arm_link_86 = forearm_link_311 - upper_arm_link_85;
-    const lane upper_arm_link_87 = forearm_link_308 * upper_arm_link_7;
-    const lane upper_arm_link_88 = forearm_link_291 - upper_arm_link_87;
-    const lane upper_arm_link_89 = forearm_link_308 * upper_arm_link_8;
-    const lane upper_arm_link_90 = forearm_link_292 - upper_arm_link_89;
-    const lane upper_arm_link_91 = forearm_link_314 * upper_arm_link_7;
-    const lane upper_arm_link_92 = forearm_link_295 - upper_arm_link_91;
-    const lane upper_arm_link_93 = forearm_link_314 * upper_arm_link_8;
-    const lane upper_arm_link_94 = forearm_link_296 - upper_arm_link_93;
-    const lane upper_arm_link_95 = forearm_link_318 * upper_arm_link_7;
-    const lane upper_arm_link_96 = forearm_link_319 - upper_arm_link_95;
-    const lane upper_arm_link_97 = forearm_link_294 * upper_arm_link_8;
-    const lane upper_arm_link_98 = forearm_link_320 - upper_arm_link_97;
-    const lane upper_arm_link_99 = forearm_link_318 * upper_arm_link_8;
-    const lane upper_arm_link_100 = forearm_link_250 - upper_arm_link_99;
-    const lane upper_arm_link_101 = upper_arm_link_3 * upper_arm_link_86;
-    const lane upper_arm_link_102 = upper_arm_link_1 * upper_arm_link_86;
-    const lane upper_arm_link_103 = upper_arm_link_3 * upper_arm_link_82;
-    const lane upper_arm_link_104 = upper_arm_link_102 - upper_arm_link_103;
-    const lane upper_arm_link_105 = upper_arm_link_1 * upper_arm_link_84;
-    const lane upper_arm_link_106 = upper_arm_link_105 - upper_arm_link_101;
-    const lane upper_arm_link_107 = upper_arm_link_1 * upper_arm_link_106;
-    const lane upper_arm_link_108 = upper_arm_link_3 * upper_arm_link_104;
-    const lane upper_arm_link_109 = upper_arm_link_107 - upper_arm_link_108;
-    const lane upper_arm_link_110 = upper_arm_link_3 * upper_arm_link_90;
-    const lane upper_arm_link_111 = upper_arm_link_1 * upper_arm_link_88;
-    const lane upper_arm_link_112 = upper_arm_link_110 + upper_arm_link_111;
-    const lane upper_arm_link_113 = upper_arm_link_3 * upper_arm_link_94;
-    const lane upper_arm_link_114 = upper_arm_link_1 * upper_arm_link_92;
-    const lane upper_arm_link_115 = upper_arm_link_113 + upper_arm_link_114;
-    const lane upper_arm_link_116 = upper_arm_link_1 * upper_arm_link_115;
-    const lane upper_arm_link_117 = upper_arm_link_3 * upper_arm_link_112;
-    const lane upper_arm_link_118 = upper_arm_link_116 - upper_arm_link_117;
-    const lane upper_arm_link_119 = upper_arm_link_3 * upper_arm_link_100;
-    const lane upper_arm_link_120 = upper_arm_link_1 * upper_arm_link_96;
-    const lane upper_arm_link_121 = upper_arm_link_119 + upper_arm_link_120;
-    const lane upper_arm_link_122 = upper_arm_link_3 * upper_arm_link_98;
-    const lane upper_arm_link_123 = upper_arm_link_1 * upper_arm_link_100;
-    const lane upper_arm_link_124 = upper_arm_link_122 + upper_arm_link_123;
-    const lane upper_arm_link_125 = upper_arm_link_3 * upper_arm_link_124;
-    const lane upper_arm_link_126 = upper_arm_link_1 * upper_arm_link_121;
-    const lane upper_arm_link_127 = upper_arm_link_125 + upper_arm_link_126;
-    const lane upper_arm_link_128 = 0.13585 * upper_arm_link_118;
-    const lane upper_arm_link_129 = 0.13585 * upper_arm_link_127;
-    const lane upper_arm_link_130 = 0.13585 * upper_arm_link_129;
-    const lane upper_arm_link_131 = upper_arm_link_109 - upper_arm_link_128;
-    const lane upper_arm_link_132 = upper_arm_link_131 - upper_arm_link_128;
-    const lane upper_arm_link_133 = upper_arm_link_130 + upper_arm_link_132;
-    const lane upper_arm_link_134 = 0.00666 + upper_arm_link_133;
+    const lane upper_arm_link_48 = upper_arm_link_1 * forearm_link_62;
+    const lane upper_arm_link_49 = upper_arm_link_48 - upper_arm_link_41;
+    const lane upper_arm_link_50 = upper_arm_link_1 * upper_arm_link_49;
+    const lane upper_arm_link_51 = upper_arm_link_3 * upper_arm_link_44;
+    const lane upper_arm_link_52 = upper_arm_link_50 - upper_arm_link_51;
+    const lane upper_arm_link_53 = upper_arm_link_52 + 0.12150210104175002;
+    const lane upper_arm_link_54 = 0.13585 * upper_arm_link_40;
+    const lane upper_arm_link_55 = upper_arm_link_47 - upper_arm_link_54;
+    const lane upper_arm_link_56 = 0.00666 + upper_arm_link_53;
 
-    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; articulated inertia pass
-    const lane shoulder_link_0 = 1.0 / upper_arm_link_134;
-
-    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; acceleration pass
-    const lane shoulder_link_1 = upper_arm_link_16 * shoulder_link_0;
-    const lane shoulder_link_2 = -shoulder_link_1;
-    const lane shoulder_link_3 = upper_arm_link_32 * shoulder_link_0;
-    const lane shoulder_link_4 = -shoulder_link_3;
-    const lane shoulder_link_5 = upper_arm_link_48 * shoulder_link_0;
-    const lane shoulder_link_6 = -shoulder_link_5;
-    const lane shoulder_link_7 = upper_arm_link_64 * shoulder_link_0;
-    const lane shoulder_link_8 = -shoulder_link_7;
-    const lane shoulder_link_9 = upper_arm_link_80 * shoulder_link_0;
-    const lane shoulder_link_10 = -shoulder_link_9;
-
-    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; acceleration pass
-    const lane upper_arm_link_135 = upper_arm_link_3 * shoulder_link_1;
-    const lane upper_arm_link_136 = upper_arm_link_1 * shoulder_link_1;
-    const lane upper_arm_link_137 = (-0.13585) * shoulder_link_1;
-    const lane upper_arm_link_138 = upper_arm_link_1 * upper_arm_link_137;
-    const lane upper_arm_link_139 = upper_arm_link_3 * upper_arm_link_137;
-    const lane upper_arm_link_140 = forearm_link_294 * upper_arm_link_139;
-    const lane upper_arm_link_141 = forearm_link_318 * upper_arm_link_138;
-    const lane upper_arm_link_142 = upper_arm_link_140 + upper_arm_link_141;
-    const lane upper_arm_link_143 = forearm_link_314 * upper_arm_link_136;
-    const lane upper_arm_link_144 = forearm_link_308 * upper_arm_link_135;
-    const lane upper_arm_link_145 = upper_arm_link_144 - upper_arm_link_143;
-    const lane upper_arm_link_146 = upper_arm_link_145 - upper_arm_link_142;
-    const lane upper_arm_link_147 = 1.0 - upper_arm_link_146;
-    const lane upper_arm_link_148 = upper_arm_link_4 * upper_arm_link_147;
-    const lane upper_arm_link_149 = upper_arm_link_3 * shoulder_link_3;
-    const lane upper_arm_link_150 = upper_arm_link_1 * shoulder_link_3;
-    const lane upper_arm_link_151 = (-0.13585) * shoulder_link_3;
-    const lane upper_arm_link_152 = upper_arm_link_1 * upper_arm_link_151;
-    const lane upper_arm_link_153 = upper_arm_link_3 * upper_arm_link_151;
-    const lane upper_arm_link_154 = forearm_link_294 * upper_arm_link_153;
-    const lane upper_arm_link_155 = forearm_link_318 * upper_arm_link_152;
-    const lane upper_arm_link_156 = upper_arm_link_154 + upper_arm_link_155;
-    const lane upper_arm_link_157 = forearm_link_314 * upper_arm_link_150;
-    const lane upper_arm_link_158 = forearm_link_308 * upper_arm_link_149;
-    const lane upper_arm_link_159 = upper_arm_link_158 - upper_arm_link_157;
-    const lane upper_arm_link_160 = upper_arm_link_159 - upper_arm_link_156;
-    const lane upper_arm_link_161 = forearm_link_25 + upper_arm_link_160;
-    const lane upper_arm_link_162 = upper_arm_link_4 * upper_arm_link_161;
-    const lane upper_arm_link_163 = -upper_arm_link_162;
-    const lane upper_arm_link_164 = upper_arm_link_3 * shoulder_link_5;
-    const lane upper_arm_link_165 = upper_arm_link_1 * shoulder_link_5;
-    const lane upper_arm_link_166 = (-0.13585) * shoulder_link_5;
-    const lane upper_arm_link_167 = upper_arm_link_1 * upper_arm_link_166;
-    const lane upper_arm_link_168 = upper_arm_link_3 * upper_arm_link_166;
-    const lane upper_arm_link_169 = forearm_link_294 * upper_arm_link_168;
-    const lane upper_arm_link_170 = forearm_link_318 * upper_arm_link_167;
-    const lane upper_arm_link_171 = upper_arm_link_169 + upper_arm_link_170;
-    const lane upper_arm_link_172 = forearm_link_314 * upper_arm_link_165;
-    const lane upper_arm_link_173 = forearm_link_308 * upper_arm_link_164;
-    const lane upper_arm_link_174 = upper_arm_link_173 - upper_arm_link_172;
-    const lane upper_arm_link_175 = upper_arm_link_174 - upper_arm_link_171;
-    const lane upper_arm_link_176 = forearm_link_57 + upper_arm_link_175;
-    const lane upper_arm_link_177 = upper_arm_link_4 * upper_arm_link_176;
-    const lane upper_arm_link_178 = -upper_arm_link_177;
-    const lane upper_arm_link_179 = upper_arm_link_3 * shoulder_link_7;
-    const lane upper_arm_link_180 = upper_arm_link_1 * shoulder_link_7;
-    const lane upper_arm_link_181 = (-0.13585) * shoulder_link_7;
-    const lane upper_arm_link_182 = upper_arm_link_1 * upper_arm_link_181;
-    const lane upper_arm_link_183 = upper_arm_link_3 * upper_arm_link_181;
-    const lane upper_arm_link_184 = forearm_link_294 * upper_arm_link_183;
-    const lane upper_arm_link_185 = forearm_link_318 * upper_arm_link_182;
-    const lane upper_arm_link_186 = upper_arm_link_184 + upper_arm_link_185;
-    const lane upper_arm_link_187 = forearm_link_314 * upper_arm_link_180;
-    const lane upper_arm_link_188 = forearm_link_308 * upper_arm_link_179;
-    const lane upper_arm_link_189 = upper_arm_link_188 - upper_arm_link_187;
-    const lane upper_arm_link_190 = upper_arm_link_189 - upper_arm_link_186;
-    const lane upper_arm_link_191 = forearm_link_89 + upper_arm_link_190;
-    const lane upper_arm_link_192 = upper_arm_link_4 * upper_arm_link_191;
-    const lane upper_arm_link_193 = -upper_arm_link_192;
-    const lane upper_arm_link_194 = upper_arm_link_3 * shoulder_link_9;
-    const lane upper_arm_link_195 = upper_arm_link_1 * shoulder_link_9;
-    const lane upper_arm_link_196 = (-0.13585) * shoulder_link_9;
-    const lane upper_arm_link_197 = upper_arm_link_1 * upper_arm_link_196;
-    const lane upper_arm_link_198 = upper_arm_link_3 * upper_arm_link_196;
-    const lane upper_arm_link_199 = forearm_link_294 * upper_arm_link_198;
-    const lane upper_arm_link_200 = forearm_link_318 * upper_arm_link_197;
-    const lane upper_arm_link_201 = upper_arm_link_199 + upper_arm_link_200;
-    const lane upper_arm_link_202 = forearm_link_314 * upper_arm_link_195;
-    const lane upper_arm_link_203 = forearm_link_308 * upper_arm_link_194;
-    const lane upper_arm_link_204 = upper_arm_link_203 - upper_arm_link_202;
-    const lane upper_arm_link_205 = upper_arm_link_204 - upper_arm_link_201;
-    const lane upper_arm_link_206 = forearm_link_121 + upper_arm_link_205;
-    const lane upper_arm_link_207 = upper_arm_link_4 * upper_arm_link_206;
-    const lane upper_arm_link_208 = -upper_arm_link_207;
-
-    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; acceleration pass
-    const lane forearm_link_321 = sin_q2 * upper_arm_link_150;
-    const lane forearm_link_322 = cos_q2 * upper_arm_link_149;
-    const lane forearm_link_323 = forearm_link_321 + forearm_link_322;
-    const lane forearm_link_324 = cos_q2 * upper_arm_link_150;
-    const lane forearm_link_325 = sin_q2 * upper_arm_link_149;
-    const lane forearm_link_326 = forearm_link_325 - forearm_link_324;
-    const lane forearm_link_327 = (-0.425) * upper_arm_link_162;
-    const lane forearm_link_328 = 0.1197 * upper_arm_link_150;
-    const lane forearm_link_329 = forearm_link_328 - forearm_link_327;
-    const lane forearm_link_330 = 0.425 * upper_arm_link_149;
-    const lane forearm_link_331 = (-0.1197) * upper_arm_link_149;
-    const lane forearm_link_332 = upper_arm_link_152 + forearm_link_329;
-    const lane forearm_link_333 = forearm_link_331 - upper_arm_link_153;
-    const lane forearm_link_334 = sin_q2 * forearm_link_333;
-    const lane forearm_link_335 = cos_q2 * forearm_link_332;
-    const lane forearm_link_336 = forearm_link_334 + forearm_link_335;
-    const lane forearm_link_337 = cos_q2 * forearm_link_333;
-    const lane forearm_link_338 = sin_q2 * forearm_link_332;
-    const lane forearm_link_339 = forearm_link_337 - forearm_link_338;
-    const lane forearm_link_340 = wrist_1_link_223 * forearm_link_339;
-    const lane forearm_link_341 = wrist_1_link_222 * forearm_link_330;
-    const lane forearm_link_342 = wrist_1_link_239 * forearm_link_336;
-    const lane forearm_link_343 = forearm_link_341 + forearm_link_342;
-    const lane forearm_link_344 = forearm_link_340 - forearm_link_343;
-    const lane forearm_link_345 = wrist_1_link_234 * forearm_link_326;
-    const lane forearm_link_346 = wrist_1_link_236 * upper_arm_link_162;
-    const lane forearm_link_347 = wrist_1_link_232 * forearm_link_323;
-    const lane forearm_link_348 = forearm_link_347 - forearm_link_346;
-    const lane forearm_link_349 = forearm_link_345 + forearm_link_348;
-    const lane forearm_link_350 = forearm_link_344 + forearm_link_349;
-    const lane forearm_link_351 = 1.0 - forearm_link_350;
-    const lane forearm_link_352 = forearm_link_0 * forearm_link_351;
-    const lane forearm_link_353 = sin_q2 * upper_arm_link_165;
-    const lane forearm_link_354 = cos_q2 * upper_arm_link_164;
-    const lane forearm_link_355 = forearm_link_353 + forearm_link_354;
-    const lane forearm_link_356 = cos_q2 * upper_arm_link_165;
-    const lane forearm_link_357 = sin_q2 * upper_arm_link_164;
-    const lane forearm_link_358 = forearm_link_357 - forearm_link_356;
-    const lane forearm_link_359 = (-0.425) * upper_arm_link_177;
-    const lane forearm_link_360 = 0.1197 * upper_arm_link_165;
-    const lane forearm_link_361 = forearm_link_360 - forearm_link_359;
-    const lane forearm_link_362 = 0.425 * upper_arm_link_164;
-    const lane forearm_link_363 = (-0.1197) * upper_arm_link_164;
-    const lane forearm_link_364 = upper_arm_link_167 + forearm_link_361;
-    const lane forearm_link_365 = forearm_link_363 - upper_arm_link_168;
-    const lane forearm_link_366 = sin_q2 * forearm_link_365;
-    const lane forearm_link_367 = cos_q2 * forearm_link_364;
-    const lane forearm_link_368 = forearm_link_366 + forearm_link_367;
-    const lane forearm_link_369 = cos_q2 * forearm_link_365;
-    const lane forearm_link_370 = sin_q2 * forearm_link_364;
-    const lane forearm_link_371 = forearm_link_369 - forearm_link_370;
-    const lane forearm_link_372 = wrist_1_link_223 * forearm_link_371;
-    const lane forearm_link_373 = wrist_1_link_222 * forearm_link_362;
-    const lane forearm_link_374 = wrist_1_link_239 * forearm_link_368;
-    const lane forearm_link_375 = forearm_link_373 + forearm_link_374;
-    const lane forearm_link_376 = forearm_link_372 - forearm_link_375;
-    const lane forearm_link_377 = wrist_1_link_234 * forearm_link_358;
-    const lane forearm_link_378 = wrist_1_link_236 * upper_arm_link_177;
-    const lane forearm_link_379 = wrist_1_link_232 * forearm_link_355;
-    const lane forearm_link_380 = forearm_link_379 - forearm_link_378;
-    const lane forearm_link_381 = forearm_link_377 + forearm_link_380;
-    const lane forearm_link_382 = forearm_link_376 + forearm_link_381;
-    const lane forearm_link_383 = wrist_1_link_26 + forearm_link_382;
-    const lane forearm_link_384 = forearm_link_0 * forearm_link_383;
-    const lane forearm_link_385 = -forearm_link_384;
-    const lane forearm_link_386 = upper_arm_link_177 + forearm_link_384;
-    const lane forearm_link_387 = sin_q2 * upper_arm_link_180;
-    const lane forearm_link_388 = cos_q2 * upper_arm_link_179;
-    const lane forearm_link_389 = forearm_link_387 + forearm_link_388;
-    const lane forearm_link_390 = cos_q2 * upper_arm_link_180;
-    const lane forearm_link_391 = sin_q2 * upper_arm_link_179;
-    const lane forearm_link_392 = forearm_link_391 - forearm_link_390;
-    const lane forearm_link_393 = (-0.425) * upper_arm_link_192;
-    const lane forearm_link_394 = 0.1197 * upper_arm_link_180;
-    const lane forearm_link_395 = forearm_link_394 - forearm_link_393;
-    const lane forearm_link_396 = 0.425 * upper_arm_link_179;
-    const lane forearm_link_397 = (-0.1197) * upper_arm_link_179;
-    const lane forearm_link_398 = upper_arm_link_182 + forearm_link_395;
-    const lane forearm_link_399 = forearm_link_397 - upper_arm_link_183;
-    const lane forearm_link_400 = sin_q2 * forearm_link_399;
-    const lane forearm_link_401 = cos_q2 * forearm_link_398;
-    const lane forearm_link_402 = forearm_link_400 + forearm_link_401;
-    const lane forearm_link_403 = cos_q2 * forearm_link_399;
-    const lane forearm_link_404 = sin_q2 * forearm_link_398;
-    const lane forearm_link_405 = forearm_link_403 - forearm_link_404;
-    const lane forearm_link_406 = wrist_1_link_223 * forearm_link_405;
-    const lane forearm_link_407 = wrist_1_link_222 * forearm_link_396;
-    const lane forearm_link_408 = wrist_1_link_239 * forearm_link_402;
-    const lane forearm_link_409 = forearm_link_407 + forearm_link_408;
-    const lane forearm_link_410 = forearm_link_406 - forearm_link_409;
-    const lane forearm_link_411 = wrist_1_link_234 * forearm_link_392;
-    const lane forearm_link_412 = wrist_1_link_236 * upper_arm_link_192;
-    const lane forearm_link_413 = wrist_1_link_232 * forearm_link_389;
-    const lane forearm_link_414 = forearm_link_413 - forearm_link_412;
-    const lane forearm_link_415 = forearm_link_411 + forearm_link_414;
-    const lane forearm_link_416 = forearm_link_410 + forearm_link_415;
-    const lane forearm_link_417 = wrist_1_link_51 + forearm_link_416;
-    const lane forearm_link_418 = forearm_link_0 * forearm_link_417;
-    const lane forearm_link_419 = -forearm_link_418;
-    const lane forearm_link_420 = upper_arm_link_192 + forearm_link_418;
-    const lane forearm_link_421 = sin_q2 * upper_arm_link_195;
-    const lane forearm_link_422 = cos_q2 * upper_arm_link_194;
-    const lane forearm_link_423 = forearm_link_421 + forearm_link_422;
-    const lane forearm_link_424 = cos_q2 * upper_arm_link_195;
-    const lane forearm_link_425 = sin_q2 * upper_arm_link_194;
-    const lane forearm_link_426 = forearm_link_425 - forearm_link_424;
-    const lane forearm_link_427 = (-0.425) * upper_arm_link_207;
-    const lane forearm_link_428 = 0.1197 * upper_arm_link_195;
-    const lane forearm_link_429 = forearm_link_428 - forearm_link_427;
-    const lane forearm_link_430 = 0.425 * upper_arm_link_194;
-    const lane forearm_link_431 = (-0.1197) * upper_arm_link_194;
-    const lane forearm_link_432 = upper_arm_link_197 + forearm_link_429;
-    const lane forearm_link_433 = forearm_link_431 - upper_arm_link_198;
-    const lane forearm_link_434 = sin_q2 * forearm_link_433;
-    const lane forearm_link_435 = cos_q2 * forearm_link_432;
-    const lane forearm_link_436 = forearm_link_434 + forearm_link_435;
-    const lane forearm_link_437 = cos_q2 * forearm_link_433;
-    const lane forearm_link_438 = sin_q2 * forearm_link_432;
-    const lane forearm_link_439 = forearm_link_437 - forearm_link_438;
-    const lane forearm_link_440 = wrist_1_link_223 * forearm_link_439;
-    const lane forearm_link_441 = wrist_1_link_222 * forearm_link_430;
-    const lane forearm_link_442 = wrist_1_link_239 * forearm_link_436;
-    const lane forearm_link_443 = forearm_link_441 + forearm_link_442;
-    const lane forearm_link_444 = forearm_link_440 - forearm_link_443;
-    const lane forearm_link_445 = wrist_1_link_234 * forearm_link_426;
-    const lane forearm_link_446 = wrist_1_link_236 * upper_arm_link_207;
-    const lane forearm_link_447 = wrist_1_link_232 * forearm_link_423;
-    const lane forearm_link_448 = forearm_link_447 - forearm_link_446;
-    const lane forearm_link_449 = forearm_link_445 + forearm_link_448;
-    const lane forearm_link_450 = forearm_link_444 + forearm_link_449;
-    const lane forearm_link_451 = wrist_1_link_75 + forearm_link_450;
-    const lane forearm_link_452 = forearm_link_0 * forearm_link_451;
-    const lane forearm_link_453 = -forearm_link_452;
-    const lane forearm_link_454 = upper_arm_link_207 + forearm_link_452;
-
-    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; acceleration pass
-    const lane wrist_1_link_243 = wrist_1_link_3 * forearm_link_358;
-    const lane wrist_1_link_244 = wrist_1_link_1 * forearm_link_355;
-    const lane wrist_1_link_245 = wrist_1_link_244 - wrist_1_link_243;
-    const lane wrist_1_link_246 = wrist_1_link_1 * forearm_link_358;
-    const lane wrist_1_link_247 = wrist_1_link_3 * forearm_link_355;
-    const lane wrist_1_link_248 = wrist_1_link_246 + wrist_1_link_247;
-    const lane wrist_1_link_249 = (-0.39225) * forearm_link_386;
-    const lane wrist_1_link_250 = 0.39225 * forearm_link_355;
-    const lane wrist_1_link_251 = wrist_1_link_249 - forearm_link_368;
-    const lane wrist_1_link_252 = forearm_link_362 + wrist_1_link_250;
-    const lane wrist_1_link_253 = wrist_1_link_3 * forearm_link_371;
-    const lane wrist_1_link_254 = wrist_1_link_1 * wrist_1_link_251;
-    const lane wrist_1_link_255 = wrist_1_link_254 - wrist_1_link_253;
-    const lane wrist_1_link_256 = wrist_1_link_1 * forearm_link_371;
-    const lane wrist_1_link_257 = wrist_1_link_3 * wrist_1_link_251;
-    const lane wrist_1_link_258 = wrist_1_link_256 + wrist_1_link_257;
-    const lane wrist_1_link_259 = wrist_2_link_43 * wrist_1_link_258;
-    const lane wrist_1_link_260 = wrist_2_link_42 * wrist_1_link_252;
-    const lane wrist_1_link_261 = wrist_2_link_39 * wrist_1_link_255;
-    const lane wrist_1_link_262 = wrist_1_link_261 - wrist_1_link_260;
-    const lane wrist_1_link_263 = wrist_1_link_259 + wrist_1_link_262;
-    const lane wrist_1_link_264 = wrist_2_link_81 * wrist_1_link_248;
-    const lane wrist_1_link_265 = wrist_2_link_83 * forearm_link_386;
-    const lane wrist_1_link_266 = wrist_2_link_78 * wrist_1_link_245;
-    const lane wrist_1_link_267 = wrist_1_link_266 - wrist_1_link_265;
-    const lane wrist_1_link_268 = wrist_1_link_264 + wrist_1_link_267;
-    const lane wrist_1_link_269 = wrist_1_link_263 + wrist_1_link_268;
-    const lane wrist_1_link_270 = 1.0 - wrist_1_link_269;
-    const lane wrist_1_link_271 = wrist_1_link_4 * wrist_1_link_270;
-    const lane wrist_1_link_272 = wrist_1_link_3 * forearm_link_392;
-    const lane wrist_1_link_273 = wrist_1_link_1 * forearm_link_389;
-    const lane wrist_1_link_274 = wrist_1_link_273 - wrist_1_link_272;
-    const lane wrist_1_link_275 = wrist_1_link_1 * forearm_link_392;
-    const lane wrist_1_link_276 = wrist_1_link_3 * forearm_link_389;
-    const lane wrist_1_link_277 = wrist_1_link_275 + wrist_1_link_276;
-    const lane wrist_1_link_278 = (-0.39225) * forearm_link_420;
-    const lane wrist_1_link_279 = 0.39225 * forearm_link_389;
-    const lane wrist_1_link_280 = wrist_1_link_278 - forearm_link_402;
-    const lane wrist_1_link_281 = forearm_link_396 + wrist_1_link_279;
-    const lane wrist_1_link_282 = wrist_1_link_3 * forearm_link_405;
-    const lane wrist_1_link_283 = wrist_1_link_1 * wrist_1_link_280;
-    const lane wrist_1_link_284 = wrist_1_link_283 - wrist_1_link_282;
-    const lane wrist_1_link_285 = wrist_1_link_1 * forearm_link_405;
-    const lane wrist_1_link_286 = wrist_1_link_3 * wrist_1_link_280;
-    const lane wrist_1_link_287 = wrist_1_link_285 + wrist_1_link_286;
-    const lane wrist_1_link_288 = wrist_2_link_43 * wrist_1_link_287;
-    const lane wrist_1_link_289 = wrist_2_link_42 * wrist_1_link_281;
-    const lane wrist_1_link_290 = wrist_2_link_39 * wrist_1_link_284;
-    const lane wrist_1_link_291 = wrist_1_link_290 - wrist_1_link_289;
-    const lane wrist_1_link_292 = wrist_1_link_288 + wrist_1_link_291;
-    const lane wrist_1_link_293 = wrist_2_link_81 * wrist_1_link_277;
-    const lane wrist_1_link_294 = wrist_2_link_83 * forearm_link_420;
-    const lane wrist_1_link_295 = wrist_2_link_78 * wrist_1_link_274;
-    const lane wrist_1_link_296 = wrist_1_link_295 - wrist_1_link_294;
-    const lane wrist_1_link_297 = wrist_1_link_293 + wrist_1_link_296;
-    const lane wrist_1_link_298 = wrist_1_link_292 + wrist_1_link_297;
-    const lane wrist_1_link_299 = wrist_2_link_4 + wrist_1_link_298;
-    const lane wrist_1_link_300 = wrist_1_link_4 * wrist_1_link_299;
-    const lane wrist_1_link_301 = -wrist_1_link_300;
-    const lane wrist_1_link_302 = forearm_link_420 + wrist_1_link_300;
-    const lane wrist_1_link_303 = wrist_1_link_3 * forearm_link_426;
-    const lane wrist_1_link_304 = wrist_1_link_1 * forearm_link_423;
-    const lane wrist_1_link_305 = wrist_1_link_304 - wrist_1_link_303;
-    const lane wrist_1_link_306 = wrist_1_link_1 * forearm_link_426;
-    const lane wrist_1_link_307 = wrist_1_link_3 * forearm_link_423;
-    const lane wrist_1_link_308 = wrist_1_link_306 + wrist_1_link_307;
-    const lane wrist_1_link_309 = (-0.39225) * forearm_link_454;
-    const lane wrist_1_link_310 = 0.39225 * forearm_link_423;
-    const lane wrist_1_link_311 = wrist_1_link_309 - forearm_link_436;
-    const lane wrist_1_link_312 = forearm_link_430 + wrist_1_link_310;
-    const lane wrist_1_link_313 = wrist_1_link_3 * forearm_link_439;
-    const lane wrist_1_link_314 = wrist_1_link_1 * wrist_1_link_311;
-    const lane wrist_1_link_315 = wrist_1_link_314 - wrist_1_link_313;
-    const lane wrist_1_link_316 = wrist_1_link_1 * forearm_link_439;
-    const lane wrist_1_link_317 = wrist_1_link_3 * wrist_1_link_311;
-    const lane wrist_1_link_318 = wrist_1_link_316 + wrist_1_link_317;
-    const lane wrist_1_link_319 = wrist_2_link_43 * wrist_1_link_318;
-    const lane wrist_1_link_320 = wrist_2_link_42 * wrist_1_link_312;
-    const lane wrist_1_link_321 = wrist_2_link_39 * wrist_1_link_315;
-    const lane wrist_1_link_322 = wrist_1_link_321 - wrist_1_link_320;
-    const lane wrist_1_link_323 = wrist_1_link_319 + wrist_1_link_322;
-    const lane wrist_1_link_324 = wrist_2_link_81 * wrist_1_link_308;
-    const lane wrist_1_link_325 = wrist_2_link_83 * forearm_link_454;
-    const lane wrist_1_link_326 = wrist_2_link_78 * wrist_1_link_305;
-    const lane wrist_1_link_327 = wrist_1_link_326 - wrist_1_link_325;
-    const lane wrist_1_link_328 = wrist_1_link_324 + wrist_1_link_327;
-    const lane wrist_1_link_329 = wrist_1_link_323 + wrist_1_link_328;
-    const lane wrist_1_link_330 = cos_q4 + wrist_1_link_329;
-    const lane wrist_1_link_331 = wrist_1_link_4 * wrist_1_link_330;
-    const lane wrist_1_link_332 = -wrist_1_link_331;
-    const lane wrist_1_link_333 = forearm_link_454 + wrist_1_link_331;
-
-    // ---- link 'wrist_2_link' (4) <- 'wrist_1_link' (3); joint 'wrist_2_joint': revolute +z; acceleration pass
-    const lane wrist_2_link_88 = sin_q4 * wrist_1_link_302;
-    const lane wrist_2_link_89 = cos_q4 * wrist_1_link_274;
-    const lane wrist_2_link_90 = wrist_2_link_89 - wrist_2_link_88;
-    const lane wrist_2_link_91 = wrist_3_link_30 * wrist_1_link_277;
-    const lane wrist_2_link_92 = wrist_3_link_12 * wrist_2_link_90;
-    const lane wrist_2_link_93 = wrist_2_link_91 + wrist_2_link_92;
-    const lane wrist_2_link_94 = 1.0 - wrist_2_link_93;
-    const lane wrist_2_link_95 = wrist_2_link_0 * wrist_2_link_94;
-    const lane wrist_2_link_96 = sin_q4 * wrist_1_link_333;
-    const lane wrist_2_link_97 = cos_q4 * wrist_1_link_305;
-    const lane wrist_2_link_98 = wrist_2_link_97 - wrist_2_link_96;
-    const lane wrist_2_link_99 = cos_q4 * wrist_1_link_333;
-    const lane wrist_2_link_100 = sin_q4 * wrist_1_link_305;
-    const lane wrist_2_link_101 = wrist_2_link_99 + wrist_2_link_100;
-    const lane wrist_2_link_102 = wrist_3_link_30 * wrist_1_link_308;
-    const lane wrist_2_link_103 = wrist_3_link_12 * wrist_2_link_98;
-    const lane wrist_2_link_104 = wrist_2_link_102 + wrist_2_link_103;
-    const lane wrist_2_link_105 = wrist_2_link_0 * wrist_2_link_104;
-    const lane wrist_2_link_106 = -wrist_2_link_105;
-
-    // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; acceleration pass
-    const lane wrist_3_link_33 = (-0.0171364731454) * wrist_2_link_101;
-    const lane wrist_3_link_34 = 1.0 - wrist_3_link_33;
-    const lane wrist_3_link_35 = 58.355064750790525 * wrist_3_link_34;
+    // ---- factorisation of M
+    const lane t_0 = wrist_1_link_5 * 58.355064750790525;
+    const lane t_1 = wrist_1_link_5 * t_0;
+    const lane t_2 = wrist_2_link_21 - t_1;
+    const lane t_3 = forearm_link_9 - t_1;
+    const lane t_4 = upper_arm_link_32 - t_1;
+    const lane t_5 = shoulder_link_2 * t_0;
+    const lane t_6 = shoulder_link_13 + t_5;
+    const lane t_7 = wrist_1_link_45 - t_1;
+    const lane t_8 = upper_arm_link_37 - t_1;
+    const lane t_9 = shoulder_link_21 + t_5;
+    const lane t_10 = forearm_link_61 - t_1;
+    const lane t_11 = upper_arm_link_55 + t_5;
+    const lane t_12 = shoulder_link_2 * (-58.355064750790525);
+    const lane t_13 = shoulder_link_2 * t_12;
+    const lane t_14 = upper_arm_link_56 + t_13;
+    const lane t_15 = 1.0 / wrist_3_link_17;
+    const lane t_16 = wrist_2_link_5 * t_15;
+    const lane t_17 = wrist_2_link_5 * t_16;
+    const lane t_18 = t_2 - t_17;
+    const lane t_19 = t_3 - t_17;
+    const lane t_20 = t_4 - t_17;
+    const lane t_21 = shoulder_link_5 * t_16;
+    const lane t_22 = t_6 - t_21;
+    const lane t_23 = t_7 - t_17;
+    const lane t_24 = t_8 - t_17;
+    const lane t_25 = t_9 - t_21;
+    const lane t_26 = t_10 - t_17;
+    const lane t_27 = t_11 - t_21;
+    const lane t_28 = shoulder_link_5 * t_15;
+    const lane t_29 = shoulder_link_5 * t_28;
+    const lane t_30 = t_14 - t_29;
+    const lane t_31 = 1.0 / t_18;
+    const lane t_32 = t_19 * t_31;
+    const lane t_33 = t_19 * t_32;
+    const lane t_34 = t_23 - t_33;
+    const lane t_35 = t_20 * t_32;
+    const lane t_36 = t_24 - t_35;
+    const lane t_37 = t_22 * t_32;
+    const lane t_38 = t_25 - t_37;
+    const lane t_39 = t_20 * t_31;
+    const lane t_40 = t_20 * t_39;
+    const lane t_41 = t_26 - t_40;
+    const lane t_42 = t_22 * t_39;
+    const lane t_43 = t_27 - t_42;
+    const lane t_44 = t_22 * t_31;
+    const lane t_45 = t_22 * t_44;
+    const lane t_46 = t_30 - t_45;
+    const lane t_47 = 1.0 / t_34;
+    const lane t_48 = t_36 * t_47;
+    const lane t_49 = t_36 * t_48;
+    const lane t_50 = t_41 - t_49;
+    const lane t_51 = t_38 * t_48;
+    const lane t_52 = t_43 - t_51;
+    const lane t_53 = t_38 * t_47;
+    const lane t_54 = t_38 * t_53;
+    const lane t_55 = t_46 - t_54;
+    const lane t_56 = 1.0 / t_50;
+    const lane t_57 = t_52 * t_56;
+    const lane t_58 = t_52 * t_57;
+    const lane t_59 = t_55 - t_58;
+    const lane t_60 = 1.0 / t_59;
+    const lane t_61 = t_48 * t_57;
+    const lane t_62 = t_61 - t_53;
+    const lane t_63 = t_32 * t_48;
+    const lane t_64 = t_63 - t_39;
+    const lane t_65 = t_32 * t_62;
+    const lane t_66 = t_39 * t_57;
+    const lane t_67 = t_66 - t_65;
+    const lane t_68 = t_67 - t_44;
+    const lane t_69 = t_16 * t_32;
+    const lane t_70 = t_69 - t_16;
+    const lane t_71 = t_16 * t_64;
+    const lane t_72 = t_16 * t_48;
+    const lane t_73 = t_72 - t_71;
+    const lane t_74 = t_73 - t_16;
+    const lane t_75 = t_16 * t_68;
+    const lane t_76 = t_16 * t_62;
+    const lane t_77 = t_75 + t_76;
+    const lane t_78 = t_16 * t_57;
+    const lane t_79 = t_78 - t_77;
+    const lane t_80 = t_79 - t_28;
+    const lane t_81 = t_0 * t_32;
+    const lane t_82 = t_81 - t_0;
+    const lane t_83 = t_0 * t_64;
+    const lane t_84 = t_0 * t_48;
+    const lane t_85 = t_84 - t_83;
+    const lane t_86 = t_85 - t_0;
+    const lane t_87 = t_0 * t_68;
+    const lane t_88 = t_0 * t_62;
+    const lane t_89 = t_87 + t_88;
+    const lane t_90 = t_0 * t_57;
+    const lane t_91 = t_90 - t_89;
+    const lane t_92 = t_91 - t_12;
+    const lane t_93 = t_57 * t_60;
+    const lane t_94 = -t_93;
+    const lane t_95 = t_57 * t_93;
+    const lane t_96 = t_56 + t_95;
+    const lane t_97 = t_60 * t_62;
+    const lane t_98 = t_48 * t_56;
+    const lane t_99 = t_57 * t_97;
+    const lane t_100 = t_98 + t_99;
+    const lane t_101 = -t_100;
+    const lane t_102 = t_48 * t_98;
+    const lane t_103 = t_47 + t_102;
+    const lane t_104 = t_62 * t_97;
+    const lane t_105 = t_103 + t_104;
+    const lane t_106 = t_60 * t_68;
+    const lane t_107 = t_56 * t_64;
+    const lane t_108 = t_57 * t_106;
+    const lane t_109 = t_107 - t_108;
+    const lane t_110 = t_32 * t_47;
+    const lane t_111 = t_48 * t_107;
+    const lane t_112 = t_110 + t_111;
+    const lane t_113 = t_62 * t_106;
+    const lane t_114 = t_113 - t_112;
+    const lane t_115 = t_32 * t_110;
+    const lane t_116 = t_31 + t_115;
+    const lane t_117 = t_64 * t_107;
+    const lane t_118 = t_116 + t_117;
+    const lane t_119 = t_68 * t_106;
+    const lane t_120 = t_118 + t_119;
+    const lane t_121 = t_60 * t_80;
+    const lane t_122 = t_56 * t_74;
+    const lane t_123 = t_57 * t_121;
+    const lane t_124 = t_122 - t_123;
+    const lane t_125 = t_47 * t_70;
+    const lane t_126 = t_48 * t_122;
+    const lane t_127 = t_125 - t_126;
+    const lane t_128 = t_62 * t_121;
+    const lane t_129 = t_127 + t_128;
+    const lane t_130 = t_16 * t_31;
+    const lane t_131 = t_32 * t_125;
+    const lane t_132 = t_130 + t_131;
+    const lane t_133 = t_64 * t_122;
+    const lane t_134 = t_133 - t_132;
+    const lane t_135 = t_68 * t_121;
+    const lane t_136 = t_134 + t_135;
+    const lane t_137 = t_16 * t_130;
+    const lane t_138 = t_15 + t_137;
+    const lane t_139 = t_70 * t_125;
+    const lane t_140 = t_138 + t_139;
+    const lane t_141 = t_74 * t_122;
+    const lane t_142 = t_140 + t_141;
+    const lane t_143 = t_80 * t_121;
+    const lane t_144 = t_142 + t_143;
+    const lane t_145 = t_60 * t_92;
+    const lane t_146 = t_56 * t_86;
+    const lane t_147 = t_57 * t_145;
+    const lane t_148 = t_146 - t_147;
+    const lane t_149 = t_47 * t_82;
+    const lane t_150 = t_48 * t_146;
+    const lane t_151 = t_149 - t_150;
+    const lane t_152 = t_62 * t_145;
+    const lane t_153 = t_151 + t_152;
+    const lane t_154 = t_0 * t_31;
+    const lane t_155 = t_32 * t_149;
+    const lane t_156 = t_154 + t_155;
+    const lane t_157 = t_64 * t_146;
+    const lane t_158 = t_157 - t_156;
+    const lane t_159 = t_68 * t_145;
+    const lane t_160 = t_158 + t_159;
+    const lane t_161 = t_16 * t_154;
+    const lane t_162 = t_70 * t_149;
+    const lane t_163 = t_161 + t_162;
+    const lane t_164 = t_74 * t_146;
+    const lane t_165 = t_163 + t_164;
+    const lane t_166 = t_80 * t_145;
+    const lane t_167 = t_165 + t_166;
+    const lane t_168 = t_0 * t_154;
+    const lane t_169 = 58.355064750790525 + t_168;
+    const lane t_170 = t_82 * t_149;
+    const lane t_171 = t_169 + t_170;
+    const lane t_172 = t_86 * t_146;
+    const lane t_173 = t_171 + t_172;
+    const lane t_174 = t_92 * t_145;
+    const lane t_175 = t_173 + t_174;
 
     // ---- outputs
-    store(Minv + 0 * lanes, shoulder_link_0);
-    store(Minv + 1 * lanes, shoulder_link_2);
-    store(Minv + 2 * lanes, shoulder_link_4);
-    store(Minv + 3 * lanes, shoulder_link_6);
-    store(Minv + 4 * lanes, shoulder_link_8);
-    store(Minv + 5 * lanes, shoulder_link_10);
-    store(Minv + 6 * lanes, shoulder_link_2);
-    store(Minv + 7 * lanes, upper_arm_link_148);
-    store(Minv + 8 * lanes, upper_arm_link_163);
-    store(Minv + 9 * lanes, upper_arm_link_178);
-    store(Minv + 10 * lanes, upper_arm_link_193);
-    store(Minv + 11 * lanes, upper_arm_link_208);
-    store(Minv + 12 * lanes, shoulder_link_4);
-    store(Minv + 13 * lanes, upper_arm_link_163);
-    store(Minv + 14 * lanes, forearm_link_352);
-    store(Minv + 15 * lanes, forearm_link_385);
-    store(Minv + 16 * lanes, forearm_link_419);
-    store(Minv + 17 * lanes, forearm_link_453);
-    store(Minv + 18 * lanes, shoulder_link_6);
-    store(Minv + 19 * lanes, upper_arm_link_178);
-    store(Minv + 20 * lanes, forearm_link_385);
-    store(Minv + 21 * lanes, wrist_1_link_271);
-    store(Minv + 22 * lanes, wrist_1_link_301);
-    store(Minv + 23 * lanes, wrist_1_link_332);
-    store(Minv + 24 * lanes, shoulder_link_8);
-    store(Minv + 25 * lanes, upper_arm_link_193);
-    store(Minv + 26 * lanes, forearm_link_419);
-    store(Minv + 27 * lanes, wrist_1_link_301);
-    store(Minv + 28 * lanes, wrist_2_link_95);
-    store(Minv + 29 * lanes, wrist_2_link_106);
-    store(Minv + 30 * lanes, shoulder_link_10);
-    store(Minv + 31 * lanes, upper_arm_link_208);
-    store(Minv + 32 * lanes, forearm_link_453);
-    store(Minv + 33 * lanes, wrist_1_link_332);
-    store(Minv + 34 * lanes, wrist_2_link_106);
-    store(Minv + 35 * lanes, wrist_3_link_35);
+    store(Minv + 0 * lanes, t_60);
+    store(Minv + 1 * lanes, t_94);
+    store(Minv + 2 * lanes, t_97);
+    store(Minv + 3 * lanes, t_106);
+    store(Minv + 4 * lanes, t_121);
+    store(Minv + 5 * lanes, t_145);
+    store(Minv + 6 * lanes, t_94);
+    store(Minv + 7 * lanes, t_96);
+    store(Minv + 8 * lanes, t_101);
+    store(Minv + 9 * lanes, t_109);
+    store(Minv + 10 * lanes, t_124);
+    store(Minv + 11 * lanes, t_148);
+    store(Minv + 12 * lanes, t_97);
+    store(Minv + 13 * lanes, t_101);
+    store(Minv + 14 * lanes, t_105);
+    store(Minv + 15 * lanes, t_114);
+    store(Minv + 16 * lanes, t_129);
+    store(Minv + 17 * lanes, t_153);
+    store(Minv + 18 * lanes, t_106);
+    store(Minv + 19 * lanes, t_109);
+    store(Minv + 20 * lanes, t_114);
+    store(Minv + 21 * lanes, t_120);
+    store(Minv + 22 * lanes, t_136);
+    store(Minv + 23 * lanes, t_160);
+    store(Minv + 24 * lanes, t_121);
+    store(Minv + 25 * lanes, t_124);
+    store(Minv + 26 * lanes, t_129);
+    store(Minv + 27 * lanes, t_136);
+    store(Minv + 28 * lanes, t_144);
+    store(Minv + 29 * lanes, t_167);
+    store(Minv + 30 * lanes, t_145);
+    store(Minv + 31 * lanes, t_148);
+    store(Minv + 32 * lanes, t_153);
+    store(Minv + 33 * lanes, t_160);
+    store(Minv + 34 * lanes, t_167);
+    store(Minv + 35 * lanes, t_175);
 }
 
 void minv_batch(const double q[nq * lanes], double Minv[nv * nv * lanes]) noexcept
@@ -4100,7 +3372,7 @@ void minv_batch(const double q[nq * lanes], double Minv[nv * nv * lanes]) noexce
     minv_batch_trig(q, trig, Minv);
 }
 
-// Inverse of the mass matrix M(q)^-1 (articulated-body recursion, no factorisation)., for count states (the batch header, "Layouts").
+// Inverse of the mass matrix M(q)^-1 (CRBA, then L^T D L along the tree's branches)., for count states (the batch header, "Layouts").
 void minv_many(long count, const double* q, double* Minv) noexcept
 {
     for (long first = 0; first < count; first += lanes) {
@@ -4114,6 +3386,7 @@ void minv_many(long count, const double* q, double* Minv) noexcept
 
 // Derivatives of inverse dynamics: d tau / dq and d tau / dv at (q, v, a) (d tau / da is M). (a batch)
 // Operations: add 1028, mul 1156, div 0, neg 5, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void rnea_derivatives_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                  const double v[nv * lanes], const double a[nv * lanes],
                                  double dtau_dq[nv * nv * lanes],
@@ -6470,6 +5743,7 @@ void rnea_derivatives_many(long count, const double* q, const double* v, const d
 
 // Derivatives of forward dynamics: d qdd / dq, d qdd / dv and d qdd / d tau = M^-1 at (q, v, tau). (a batch)
 // Operations: add 1615, mul 1846, div 5, neg 68, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void aba_derivatives_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                 const double v[nv * lanes], const double tau[nv * lanes],
                                 double dqdd_dq[nv * nv * lanes], double dqdd_dv[nv * nv * lanes],
@@ -10273,6 +9547,7 @@ void aba_derivatives_many(long count, const double* q, const double* v, const do
 
 // Placements of the frames: rotation R and origin p in base coordinates. (a batch)
 // Operations: add 54, mul 81, div 0, neg 1, sin 6, cos 6 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void frame_placements_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                  double R[nframes * 9 * lanes],
                                  double p[nframes * 3 * lanes]) noexcept
@@ -10496,6 +9771,7 @@ void frame_placements_many(long count, const double* q, double* R, double* p) no
 
 // Jacobians of the frames, in base axes at each frame's origin. (a batch)
 // Operations: add 65, mul 95, div 0, neg 3, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void frame_jacobians_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                 double J[nframes * 6 * nv * lanes]) noexcept
 {
@@ -10801,6 +10077,7 @@ void frame_jacobians_many(long count, const double* q, double* J) noexcept
 
 // Jacobians of the frames, in each frame's own axes. (a batch)
 // Operations: add 181, mul 271, div 0, neg 1, sin 6, cos 6 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void frame_jacobians_local_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                       double J_local[nframes * 6 * nv * lanes]) noexcept
 {
@@ -11410,6 +10687,7 @@ void frame_jacobians_local_many(long count, const double* q, double* J_local) no
 
 // Bias accelerations Jdot v of the frames at qdd = 0, in base axes. (a batch)
 // Operations: add 145, mul 177, div 0, neg 0, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void frame_accelerations_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                     const double v[nv * lanes],
                                     double Jdot_v[nframes * 6 * lanes]) noexcept
@@ -11810,6 +11088,7 @@ void frame_accelerations_many(long count, const double* q, const double* v, doub
 
 // Bias accelerations Jdot v of the frames at qdd = 0, in each frame's own axes. (a batch)
 // Operations: add 189, mul 239, div 0, neg 0, sin 6, cos 6 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void frame_accelerations_local_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                           const double v[nv * lanes],
                                           double Jdot_v_local[nframes * 6 * lanes]) noexcept
@@ -12318,6 +11597,7 @@ void frame_accelerations_local_many(long count, const double* q, const double* v
 
 // Centre of mass c(q) and its Jacobian. (a batch)
 // Operations: add 30, mul 67, div 0, neg 0, sin 4, cos 4 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void com_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig, double c[3 * lanes],
                     double Jc[3 * nv * lanes]) noexcept
 {
@@ -12500,6 +11780,7 @@ void com_many(long count, const double* q, double* c, double* Jc) noexcept
 
 // Centroidal momentum matrix Ag(q) and momentum hg = Ag v (Orin, Goswami & Lee 2013). (a batch)
 // Operations: add 191, mul 242, div 0, neg 2, sin 6, cos 6 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void centroidal_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                            const double v[nv * lanes], double Ag[6 * nv * lanes],
                            double hg[6 * lanes]) noexcept
@@ -13064,6 +12345,7 @@ void centroidal_many(long count, const double* q, const double* v, double* Ag, d
 
 // Inertial-parameter regressor Y(q, v, a): tau = Y pi + armature a, linear in the bodies' standard parameters pi. (a batch)
 // Operations: add 570, mul 869, div 0, neg 30, sin 5, cos 5 per lane (sin and cos in joint_trig_batch).
+DYNGEN_DISPATCH
 void regressor_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                           const double v[nv * lanes], const double a[nv * lanes],
                           double Y[nbodies * 10 * nv * lanes]) noexcept
@@ -14816,6 +14098,7 @@ void regressor_many(long count, const double* q, const double* v, const double* 
 
 // The configuration reached from q along the tangent vector v in unit time: q (+) v (Pinocchio's integrate). (a batch)
 // Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 per lane (it reads no joint angle).
+DYNGEN_DISPATCH
 void integrate_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                           const double v[nv * lanes], double q_plus[nq * lanes]) noexcept
 {
@@ -14865,8 +14148,7 @@ void integrate_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig
 void integrate_batch(const double q[nq * lanes], const double v[nv * lanes],
                      double q_plus[nq * lanes]) noexcept
 {
-    JointTrigBatch trig;
-    trig = JointTrigBatch{};  // no angle is read
+    static const JointTrigBatch trig{};  // no angle is read
     integrate_batch_trig(q, trig, v, q_plus);
 }
 
@@ -14886,6 +14168,7 @@ void integrate_many(long count, const double* q, const double* v, double* q_plus
 
 // The tangent vector from q to q_target, with integrate(q, delta) = q_target (Pinocchio's difference). (a batch)
 // Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 per lane (it reads no joint angle).
+DYNGEN_DISPATCH
 void difference_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                            const double q_target[nq * lanes], double delta[nv * lanes]) noexcept
 {
@@ -14935,8 +14218,7 @@ void difference_batch_trig(const double q[nq * lanes], const JointTrigBatch& tri
 void difference_batch(const double q[nq * lanes], const double q_target[nq * lanes],
                       double delta[nv * lanes]) noexcept
 {
-    JointTrigBatch trig;
-    trig = JointTrigBatch{};  // no angle is read
+    static const JointTrigBatch trig{};  // no angle is read
     difference_batch_trig(q, trig, q_target, delta);
 }
 
@@ -14956,6 +14238,7 @@ void difference_many(long count, const double* q, const double* q_target, double
 
 // Jacobians of integrate(q, v) by q and by v, in tangent coordinates (Pinocchio's dIntegrate). (a batch)
 // Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 per lane (it reads no joint angle).
+DYNGEN_DISPATCH
 void integrate_derivatives_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                       const double v[nv * lanes],
                                       double dintegrate_dq[nv * nv * lanes],
@@ -14988,8 +14271,7 @@ void integrate_derivatives_batch(const double q[nq * lanes], const double v[nv *
                                  double dintegrate_dq[nv * nv * lanes],
                                  double dintegrate_dv[nv * nv * lanes]) noexcept
 {
-    JointTrigBatch trig;
-    trig = JointTrigBatch{};  // no angle is read
+    static const JointTrigBatch trig{};  // no angle is read
     integrate_derivatives_batch_trig(q, trig, v, dintegrate_dq, dintegrate_dv);
 }
 
@@ -15012,6 +14294,7 @@ void integrate_derivatives_many(long count, const double* q, const double* v,
 
 // Jacobians of difference(q, q_target) by q and by q_target, in tangent coordinates (Pinocchio's dDifference). (a batch)
 // Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 per lane (it reads no joint angle).
+DYNGEN_DISPATCH
 void difference_derivatives_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                                        const double q_target[nq * lanes],
                                        double ddifference_dq[nv * nv * lanes],
@@ -15044,8 +14327,7 @@ void difference_derivatives_batch(const double q[nq * lanes], const double q_tar
                                   double ddifference_dq[nv * nv * lanes],
                                   double ddifference_dq_target[nv * nv * lanes]) noexcept
 {
-    JointTrigBatch trig;
-    trig = JointTrigBatch{};  // no angle is read
+    static const JointTrigBatch trig{};  // no angle is read
     difference_derivatives_batch_trig(q, trig, q_target, ddifference_dq, ddifference_dq_target);
 }
 

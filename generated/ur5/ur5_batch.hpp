@@ -24,9 +24,9 @@
 //     runtime:   add 702, mul 858, div 0, neg 3, sin 6, cos 6
 //     0 of 10 link sections in 0 shared functions
 //   minv
-//     generated: add 459, mul 673, div 5, neg 15, sin 5, cos 5
-//     runtime:   add 2223, mul 2538, div 6, neg 18, sin 6, cos 6
-//     0 of 14 link sections in 0 shared functions
+//     generated: add 187, mul 212, div 5, neg 2, sin 5, cos 5
+//     runtime:   add 927, mul 1235, div 6, neg 0, sin 6, cos 6
+//     0 of 20 link sections in 0 shared functions
 //   rnea_derivatives
 //     generated: add 1028, mul 1156, div 0, neg 5, sin 5, cos 5
 //     runtime:   add 4939, mul 5754, div 0, neg 3, sin 6, cos 6
@@ -153,7 +153,7 @@ void nle_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                     const double v[nv * lanes], double h[nv * lanes]) noexcept;
 void nle_many(long count, const double* q, const double* v, double* h) noexcept;
 
-/// Inverse of the mass matrix M(q)^-1 (articulated-body recursion, no factorisation)., lane by lane: 4 states (_batch) or any count of them (_many).
+/// Inverse of the mass matrix M(q)^-1 (CRBA, then L^T D L along the tree's branches)., lane by lane: 4 states (_batch) or any count of them (_many).
 void minv_batch(const double q[nq * lanes], double Minv[nv * nv * lanes]) noexcept;
 void minv_batch_trig(const double q[nq * lanes], const JointTrigBatch& trig,
                      double Minv[nv * nv * lanes]) noexcept;

@@ -24,9 +24,9 @@
 //     runtime:   add 702, mul 858, div 0, neg 3, sin 6, cos 6
 //     0 of 10 link sections in 0 shared functions
 //   minv
-//     generated: add 459, mul 673, div 5, neg 15, sin 5, cos 5
-//     runtime:   add 2223, mul 2538, div 6, neg 18, sin 6, cos 6
-//     0 of 14 link sections in 0 shared functions
+//     generated: add 187, mul 212, div 5, neg 2, sin 5, cos 5
+//     runtime:   add 927, mul 1235, div 6, neg 0, sin 6, cos 6
+//     0 of 20 link sections in 0 shared functions
 //   rnea_derivatives
 //     generated: add 1028, mul 1156, div 0, neg 5, sin 5, cos 5
 //     runtime:   add 4939, mul 5754, div 0, neg 3, sin 6, cos 6
@@ -101,6 +101,7 @@ void joint_trig(const double q[nq], JointTrig& trig) noexcept
 
 // Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q).
 // Operations: add 174, mul 251, div 0, neg 0, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void rnea_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double a[nv],
                double tau[nv]) noexcept
 {
@@ -572,6 +573,7 @@ void rnea(const double q[nq], const double v[nv], const double a[nv], double tau
 
 // Mass matrix M(q) (composite rigid bodies).
 // Operations: add 108, mul 122, div 0, neg 1, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void crba_trig(const double q[nq], const JointTrig& trig, double M[nv * nv]) noexcept
 {
     static_cast<void>(q);  // read only through trig
@@ -894,6 +896,7 @@ void crba(const double q[nq], double M[nv * nv]) noexcept
 
 // Forward dynamics (articulated bodies): qdd = M(q)^-1 (tau - C(q, v) v - g(q)).
 // Operations: add 508, mul 688, div 5, neg 0, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void aba_trig(const double q[nq], const JointTrig& trig, const double v[nv], const double tau[nv],
               double qdd[nv]) noexcept
 {
@@ -2153,6 +2156,7 @@ void aba(const double q[nq], const double v[nv], const double tau[nv], double qd
 
 // Generalised gravity g(q) = rnea(q, 0, 0), from each subtree's mass and first moment.
 // Operations: add 13, mul 23, div 0, neg 0, sin 3, cos 3 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void gravity_trig(const double q[nq], const JointTrig& trig, double g[nv]) noexcept
 {
     static_cast<void>(q);  // read only through trig
@@ -2224,6 +2228,7 @@ void gravity(const double q[nq], double g[nv]) noexcept
 
 // Nonlinear effects h(q, v) = C(q, v) v + g(q): rnea at a = 0.
 // Operations: add 156, mul 235, div 0, neg 0, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], double h[nv]) noexcept
 {
     static_cast<void>(q);  // read only through trig
@@ -2656,25 +2661,26 @@ void nle(const double q[nq], const double v[nv], double h[nv]) noexcept
     nle_trig(q, trig, v, h);
 }
 
-// Inverse of the mass matrix M(q)^-1 (articulated-body recursion, no factorisation).
-// Operations: add 459, mul 673, div 5, neg 15, sin 5, cos 5 (sin and cos in joint_trig).
+// Inverse of the mass matrix M(q)^-1 (CRBA, then L^T D L along the tree's branches).
+// Operations: add 187, mul 212, div 5, neg 2, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) noexcept
 {
     static_cast<void>(q);  // read only through trig
 
-    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; velocity pass
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; kinematics
     const double upper_arm_link_0 = 4.896638650109253e-12 * trig.cos_q[1];
     const double upper_arm_link_1 = upper_arm_link_0 - trig.sin_q[1];
     const double upper_arm_link_2 = 4.896638650109253e-12 * trig.sin_q[1];
     const double upper_arm_link_3 = trig.cos_q[1] + upper_arm_link_2;
 
-    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; velocity pass
+    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; kinematics
     const double wrist_1_link_0 = 4.896638650109253e-12 * trig.cos_q[3];
     const double wrist_1_link_1 = wrist_1_link_0 - trig.sin_q[3];
     const double wrist_1_link_2 = 4.896638650109253e-12 * trig.sin_q[3];
     const double wrist_1_link_3 = trig.cos_q[3] + wrist_1_link_2;
 
-    // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; articulated inertia pass
+    // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; composite inertia
     const double wrist_3_link_0 = 0.0171364731454 * trig.cos_q[5];
     const double wrist_3_link_1 = 0.033822 * trig.sin_q[5];
     const double wrist_3_link_2 = trig.sin_q[5] * (-0.0171364731454);
@@ -2688,1197 +2694,463 @@ void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) 
     const double wrist_3_link_10 = trig.sin_q[5] * wrist_3_link_3;
     const double wrist_3_link_11 = trig.cos_q[5] * wrist_3_link_2;
     const double wrist_3_link_12 = wrist_3_link_10 + wrist_3_link_11;
-    const double wrist_3_link_13 = 0.1879 * trig.cos_q[5];
-    const double wrist_3_link_14 = 0.1879 * trig.sin_q[5];
-    const double wrist_3_link_15 = trig.sin_q[5] * (-0.1879);
-    const double wrist_3_link_16 = trig.sin_q[5] * wrist_3_link_14;
-    const double wrist_3_link_17 = trig.cos_q[5] * wrist_3_link_13;
-    const double wrist_3_link_18 = wrist_3_link_16 + wrist_3_link_17;
-    const double wrist_3_link_19 = trig.sin_q[5] * wrist_3_link_15;
-    const double wrist_3_link_20 = wrist_3_link_17 - wrist_3_link_19;
-    const double wrist_3_link_21 = trig.sin_q[5] * wrist_3_link_13;
-    const double wrist_3_link_22 = trig.cos_q[5] * wrist_3_link_15;
-    const double wrist_3_link_23 = wrist_3_link_21 + wrist_3_link_22;
-    const double wrist_3_link_24 = 0.09465 * wrist_3_link_18;
-    const double wrist_3_link_25 = 0.09465 * wrist_3_link_23;
-    const double wrist_3_link_26 = wrist_3_link_24 * (-0.09465);
-    const double wrist_3_link_27 = wrist_3_link_6 - (-0.00168332516775);
-    const double wrist_3_link_28 = 0.111172755531 + wrist_3_link_27;
-    const double wrist_3_link_29 = 0.111172755531 - wrist_3_link_26;
-    const double wrist_3_link_30 = 0.21942 + wrist_3_link_9;
-    const double wrist_3_link_31 = 1.219 + wrist_3_link_18;
-    const double wrist_3_link_32 = 1.219 + wrist_3_link_20;
+    const double wrist_3_link_13 = wrist_3_link_6 + 0.00168332516775;
+    const double wrist_3_link_14 = wrist_3_link_9 - 0.00168332516775;
+    const double wrist_3_link_15 = 0.00168332516775 + wrist_3_link_14;
+    const double wrist_3_link_16 = 0.111172755531 + wrist_3_link_13;
+    const double wrist_3_link_17 = 0.21942 + wrist_3_link_15;
 
-    // ---- link 'wrist_2_link' (4) <- 'wrist_1_link' (3); joint 'wrist_2_joint': revolute +z; articulated inertia pass
-    const double wrist_2_link_0 = 1.0 / wrist_3_link_30;
-    const double wrist_2_link_1 = wrist_3_link_12 * wrist_2_link_0;
-    const double wrist_2_link_2 = wrist_3_link_30 * wrist_2_link_0;
-    const double wrist_2_link_3 = trig.cos_q[4] * wrist_2_link_1;
-    const double wrist_2_link_4 = trig.sin_q[4] * wrist_2_link_1;
-    const double wrist_2_link_5 = wrist_3_link_12 * wrist_2_link_1;
-    const double wrist_2_link_6 = wrist_3_link_28 - wrist_2_link_5;
-    const double wrist_2_link_7 = wrist_3_link_30 * wrist_2_link_2;
-    const double wrist_2_link_8 = wrist_3_link_30 - wrist_2_link_7;
-    const double wrist_2_link_9 = wrist_3_link_12 * wrist_2_link_2;
-    const double wrist_2_link_10 = wrist_3_link_12 - wrist_2_link_9;
-    const double wrist_2_link_11 = trig.cos_q[4] * wrist_2_link_6;
-    const double wrist_2_link_12 = trig.sin_q[4] * wrist_3_link_29;
-    const double wrist_2_link_13 = trig.cos_q[4] * wrist_2_link_10;
-    const double wrist_2_link_14 = trig.sin_q[4] * wrist_2_link_6;
-    const double wrist_2_link_15 = trig.cos_q[4] * wrist_3_link_29;
-    const double wrist_2_link_16 = trig.sin_q[4] * wrist_2_link_10;
-    const double wrist_2_link_17 = trig.sin_q[4] * wrist_2_link_12;
-    const double wrist_2_link_18 = trig.cos_q[4] * wrist_2_link_11;
-    const double wrist_2_link_19 = wrist_2_link_17 + wrist_2_link_18;
-    const double wrist_2_link_20 = trig.cos_q[4] * wrist_2_link_15;
-    const double wrist_2_link_21 = trig.sin_q[4] * wrist_2_link_14;
-    const double wrist_2_link_22 = wrist_2_link_20 + wrist_2_link_21;
-    const double wrist_2_link_23 = trig.sin_q[4] * wrist_2_link_15;
-    const double wrist_2_link_24 = trig.cos_q[4] * wrist_2_link_14;
-    const double wrist_2_link_25 = wrist_2_link_24 - wrist_2_link_23;
-    const double wrist_2_link_26 = trig.sin_q[4] * 0.017784735;
-    const double wrist_2_link_27 = trig.cos_q[4] * (-0.017784735);
-    const double wrist_2_link_28 = trig.cos_q[4] * wrist_3_link_24;
-    const double wrist_2_link_29 = trig.sin_q[4] * wrist_3_link_24;
-    const double wrist_2_link_30 = trig.sin_q[4] * wrist_2_link_28;
-    const double wrist_2_link_31 = trig.cos_q[4] * wrist_2_link_26;
-    const double wrist_2_link_32 = wrist_2_link_31 - wrist_2_link_30;
-    const double wrist_2_link_33 = trig.sin_q[4] * wrist_2_link_29;
-    const double wrist_2_link_34 = trig.cos_q[4] * wrist_2_link_27;
-    const double wrist_2_link_35 = wrist_2_link_34 - wrist_2_link_33;
-    const double wrist_2_link_36 = trig.sin_q[4] * wrist_3_link_25;
-    const double wrist_2_link_37 = trig.cos_q[4] * wrist_2_link_28;
-    const double wrist_2_link_38 = trig.sin_q[4] * wrist_2_link_26;
-    const double wrist_2_link_39 = wrist_2_link_37 + wrist_2_link_38;
-    const double wrist_2_link_40 = trig.cos_q[4] * wrist_2_link_29;
-    const double wrist_2_link_41 = trig.sin_q[4] * wrist_2_link_27;
-    const double wrist_2_link_42 = wrist_2_link_40 + wrist_2_link_41;
-    const double wrist_2_link_43 = trig.cos_q[4] * wrist_3_link_25;
-    const double wrist_2_link_44 = trig.cos_q[4] * wrist_3_link_31;
-    const double wrist_2_link_45 = trig.sin_q[4] * (-1.4069);
-    const double wrist_2_link_46 = trig.cos_q[4] * wrist_3_link_23;
-    const double wrist_2_link_47 = trig.sin_q[4] * wrist_3_link_31;
-    const double wrist_2_link_48 = trig.cos_q[4] * 1.4069;
-    const double wrist_2_link_49 = trig.sin_q[4] * wrist_3_link_23;
-    const double wrist_2_link_50 = trig.sin_q[4] * wrist_2_link_45;
-    const double wrist_2_link_51 = trig.cos_q[4] * wrist_2_link_44;
-    const double wrist_2_link_52 = wrist_2_link_51 - wrist_2_link_50;
-    const double wrist_2_link_53 = trig.cos_q[4] * wrist_2_link_48;
-    const double wrist_2_link_54 = trig.sin_q[4] * wrist_2_link_47;
-    const double wrist_2_link_55 = wrist_2_link_53 + wrist_2_link_54;
-    const double wrist_2_link_56 = trig.sin_q[4] * wrist_2_link_48;
-    const double wrist_2_link_57 = trig.cos_q[4] * wrist_2_link_47;
-    const double wrist_2_link_58 = wrist_2_link_57 - wrist_2_link_56;
-    const double wrist_2_link_59 = wrist_2_link_36 * (-0.093);
-    const double wrist_2_link_60 = 0.093 * wrist_2_link_32;
-    const double wrist_2_link_61 = 0.093 * wrist_2_link_43;
-    const double wrist_2_link_62 = 0.093 * wrist_2_link_39;
-    const double wrist_2_link_63 = 0.093 * wrist_2_link_46;
-    const double wrist_2_link_64 = 0.093 * wrist_2_link_52;
-    const double wrist_2_link_65 = 0.093 * wrist_2_link_49;
-    const double wrist_2_link_66 = 0.093 * wrist_2_link_58;
-    const double wrist_2_link_67 = 0.093 * wrist_3_link_32;
-    const double wrist_2_link_68 = (-0.093) * wrist_2_link_67;
-    const double wrist_2_link_69 = 0.093 * wrist_2_link_63;
-    const double wrist_2_link_70 = 0.093 * wrist_2_link_64;
-    const double wrist_2_link_71 = wrist_2_link_32 + wrist_2_link_63;
-    const double wrist_2_link_72 = wrist_2_link_35 + wrist_2_link_65;
-    const double wrist_2_link_73 = wrist_2_link_67 - wrist_2_link_36;
-    const double wrist_2_link_74 = wrist_2_link_19 + wrist_2_link_59;
-    const double wrist_2_link_75 = wrist_2_link_59 + wrist_2_link_74;
-    const double wrist_2_link_76 = wrist_2_link_75 - wrist_2_link_68;
-    const double wrist_2_link_77 = wrist_2_link_8 + wrist_2_link_70;
-    const double wrist_2_link_78 = wrist_2_link_25 + wrist_2_link_61;
-    const double wrist_2_link_79 = wrist_2_link_13 - wrist_2_link_60;
-    const double wrist_2_link_80 = wrist_2_link_79 - wrist_2_link_69;
-    const double wrist_2_link_81 = wrist_2_link_16 - wrist_2_link_62;
-    const double wrist_2_link_82 = 0.111172755531 + wrist_2_link_76;
-    const double wrist_2_link_83 = 0.111172755531 + wrist_2_link_22;
-    const double wrist_2_link_84 = 0.21942 + wrist_2_link_77;
-    const double wrist_2_link_85 = 1.219 + wrist_2_link_52;
-    const double wrist_2_link_86 = 1.219 + wrist_2_link_55;
-    const double wrist_2_link_87 = 1.219 + wrist_3_link_32;
+    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; a descendant's column of M carried up
+    const double wrist_1_link_4 = trig.sin_q[4] * (-0.0171364731454);
+    const double wrist_1_link_5 = 0.0171364731454 * trig.cos_q[4];
 
-    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; articulated inertia pass
-    const double wrist_1_link_4 = 1.0 / wrist_2_link_83;
-    const double wrist_1_link_5 = wrist_2_link_78 * wrist_1_link_4;
-    const double wrist_1_link_6 = wrist_2_link_83 * wrist_1_link_4;
-    const double wrist_1_link_7 = wrist_2_link_81 * wrist_1_link_4;
-    const double wrist_1_link_8 = wrist_2_link_39 * wrist_1_link_4;
-    const double wrist_1_link_9 = wrist_2_link_42 * wrist_1_link_4;
-    const double wrist_1_link_10 = wrist_2_link_43 * wrist_1_link_4;
-    const double wrist_1_link_11 = wrist_1_link_3 * wrist_1_link_10;
-    const double wrist_1_link_12 = wrist_1_link_1 * wrist_1_link_8;
-    const double wrist_1_link_13 = wrist_1_link_11 + wrist_1_link_12;
-    const double wrist_1_link_14 = wrist_1_link_1 * wrist_1_link_10;
-    const double wrist_1_link_15 = wrist_1_link_3 * wrist_1_link_8;
-    const double wrist_1_link_16 = wrist_1_link_14 - wrist_1_link_15;
-    const double wrist_1_link_17 = 0.39225 * wrist_1_link_9;
-    const double wrist_1_link_18 = 0.39225 * wrist_1_link_13;
-    const double wrist_1_link_19 = wrist_1_link_3 * wrist_1_link_7;
-    const double wrist_1_link_20 = wrist_1_link_1 * wrist_1_link_5;
-    const double wrist_1_link_21 = wrist_1_link_19 + wrist_1_link_20;
-    const double wrist_1_link_22 = wrist_1_link_1 * wrist_1_link_7;
-    const double wrist_1_link_23 = wrist_1_link_3 * wrist_1_link_5;
-    const double wrist_1_link_24 = wrist_1_link_22 - wrist_1_link_23;
-    const double wrist_1_link_25 = wrist_1_link_21 - wrist_1_link_17;
-    const double wrist_1_link_26 = wrist_1_link_6 + wrist_1_link_18;
-    const double wrist_1_link_27 = wrist_2_link_4 * wrist_1_link_5;
-    const double wrist_1_link_28 = wrist_2_link_4 * wrist_1_link_6;
-    const double wrist_1_link_29 = wrist_2_link_4 * wrist_1_link_7;
-    const double wrist_1_link_30 = wrist_2_link_4 * wrist_1_link_8;
-    const double wrist_1_link_31 = wrist_2_link_4 * wrist_1_link_9;
-    const double wrist_1_link_32 = wrist_2_link_4 * wrist_1_link_10;
-    const double wrist_1_link_33 = wrist_2_link_3 - wrist_1_link_27;
-    const double wrist_1_link_34 = wrist_2_link_4 - wrist_1_link_28;
-    const double wrist_1_link_35 = wrist_2_link_2 - wrist_1_link_29;
-    const double wrist_1_link_36 = wrist_1_link_3 * wrist_1_link_32;
-    const double wrist_1_link_37 = wrist_1_link_1 * wrist_1_link_30;
-    const double wrist_1_link_38 = wrist_1_link_36 + wrist_1_link_37;
-    const double wrist_1_link_39 = wrist_1_link_1 * wrist_1_link_32;
-    const double wrist_1_link_40 = wrist_1_link_3 * wrist_1_link_30;
-    const double wrist_1_link_41 = wrist_1_link_40 - wrist_1_link_39;
-    const double wrist_1_link_42 = wrist_1_link_31 * (-0.39225);
-    const double wrist_1_link_43 = wrist_1_link_38 * (-0.39225);
-    const double wrist_1_link_44 = wrist_1_link_3 * wrist_1_link_35;
-    const double wrist_1_link_45 = wrist_1_link_1 * wrist_1_link_33;
-    const double wrist_1_link_46 = wrist_1_link_44 + wrist_1_link_45;
-    const double wrist_1_link_47 = wrist_1_link_1 * wrist_1_link_35;
-    const double wrist_1_link_48 = wrist_1_link_3 * wrist_1_link_33;
-    const double wrist_1_link_49 = wrist_1_link_47 - wrist_1_link_48;
-    const double wrist_1_link_50 = wrist_1_link_46 - wrist_1_link_42;
-    const double wrist_1_link_51 = wrist_1_link_34 + wrist_1_link_43;
-    const double wrist_1_link_52 = trig.cos_q[4] * wrist_1_link_5;
-    const double wrist_1_link_53 = trig.cos_q[4] * wrist_1_link_6;
-    const double wrist_1_link_54 = trig.cos_q[4] * wrist_1_link_7;
-    const double wrist_1_link_55 = trig.cos_q[4] * wrist_1_link_8;
-    const double wrist_1_link_56 = trig.cos_q[4] * wrist_1_link_9;
-    const double wrist_1_link_57 = trig.cos_q[4] * wrist_1_link_10;
-    const double wrist_1_link_58 = trig.sin_q[4] + wrist_1_link_52;
-    const double wrist_1_link_59 = trig.cos_q[4] - wrist_1_link_53;
-    const double wrist_1_link_60 = wrist_1_link_3 * wrist_1_link_57;
-    const double wrist_1_link_61 = wrist_1_link_1 * wrist_1_link_55;
-    const double wrist_1_link_62 = wrist_1_link_60 + wrist_1_link_61;
-    const double wrist_1_link_63 = wrist_1_link_1 * wrist_1_link_57;
-    const double wrist_1_link_64 = wrist_1_link_3 * wrist_1_link_55;
-    const double wrist_1_link_65 = wrist_1_link_64 - wrist_1_link_63;
-    const double wrist_1_link_66 = (-0.39225) * wrist_1_link_56;
-    const double wrist_1_link_67 = (-0.39225) * wrist_1_link_62;
-    const double wrist_1_link_68 = wrist_1_link_3 * wrist_1_link_54;
-    const double wrist_1_link_69 = wrist_1_link_1 * wrist_1_link_58;
-    const double wrist_1_link_70 = wrist_1_link_68 + wrist_1_link_69;
-    const double wrist_1_link_71 = wrist_1_link_1 * wrist_1_link_54;
-    const double wrist_1_link_72 = wrist_1_link_3 * wrist_1_link_58;
-    const double wrist_1_link_73 = wrist_1_link_72 - wrist_1_link_71;
-    const double wrist_1_link_74 = wrist_1_link_66 + wrist_1_link_70;
-    const double wrist_1_link_75 = wrist_1_link_59 + wrist_1_link_67;
-    const double wrist_1_link_76 = wrist_2_link_78 * wrist_1_link_5;
-    const double wrist_1_link_77 = wrist_2_link_82 - wrist_1_link_76;
-    const double wrist_1_link_78 = wrist_2_link_83 * wrist_1_link_6;
-    const double wrist_1_link_79 = wrist_2_link_83 - wrist_1_link_78;
-    const double wrist_1_link_80 = wrist_2_link_81 * wrist_1_link_7;
-    const double wrist_1_link_81 = wrist_2_link_84 - wrist_1_link_80;
-    const double wrist_1_link_82 = wrist_2_link_78 * wrist_1_link_6;
-    const double wrist_1_link_83 = wrist_2_link_78 - wrist_1_link_82;
-    const double wrist_1_link_84 = wrist_2_link_78 * wrist_1_link_7;
-    const double wrist_1_link_85 = wrist_2_link_80 - wrist_1_link_84;
-    const double wrist_1_link_86 = wrist_2_link_83 * wrist_1_link_7;
-    const double wrist_1_link_87 = wrist_2_link_81 - wrist_1_link_86;
-    const double wrist_1_link_88 = wrist_2_link_78 * wrist_1_link_8;
-    const double wrist_1_link_89 = wrist_2_link_71 - wrist_1_link_88;
-    const double wrist_1_link_90 = wrist_2_link_78 * wrist_1_link_9;
-    const double wrist_1_link_91 = wrist_2_link_72 - wrist_1_link_90;
-    const double wrist_1_link_92 = wrist_2_link_78 * wrist_1_link_10;
-    const double wrist_1_link_93 = wrist_2_link_73 - wrist_1_link_92;
-    const double wrist_1_link_94 = wrist_2_link_83 * wrist_1_link_8;
-    const double wrist_1_link_95 = wrist_2_link_39 - wrist_1_link_94;
-    const double wrist_1_link_96 = wrist_2_link_83 * wrist_1_link_9;
-    const double wrist_1_link_97 = wrist_2_link_42 - wrist_1_link_96;
-    const double wrist_1_link_98 = wrist_2_link_83 * wrist_1_link_10;
-    const double wrist_1_link_99 = wrist_2_link_43 - wrist_1_link_98;
-    const double wrist_1_link_100 = wrist_2_link_81 * wrist_1_link_8;
-    const double wrist_1_link_101 = wrist_2_link_64 + wrist_1_link_100;
-    const double wrist_1_link_102 = wrist_2_link_81 * wrist_1_link_9;
-    const double wrist_1_link_103 = wrist_2_link_66 + wrist_1_link_102;
-    const double wrist_1_link_104 = wrist_2_link_81 * wrist_1_link_10;
-    const double wrist_1_link_105 = wrist_2_link_63 + wrist_1_link_104;
-    const double wrist_1_link_106 = wrist_2_link_39 * wrist_1_link_8;
-    const double wrist_1_link_107 = wrist_2_link_85 - wrist_1_link_106;
-    const double wrist_1_link_108 = wrist_2_link_42 * wrist_1_link_9;
-    const double wrist_1_link_109 = wrist_2_link_86 - wrist_1_link_108;
-    const double wrist_1_link_110 = wrist_2_link_43 * wrist_1_link_10;
-    const double wrist_1_link_111 = wrist_2_link_87 - wrist_1_link_110;
-    const double wrist_1_link_112 = wrist_2_link_39 * wrist_1_link_9;
-    const double wrist_1_link_113 = wrist_2_link_58 - wrist_1_link_112;
-    const double wrist_1_link_114 = wrist_2_link_39 * wrist_1_link_10;
-    const double wrist_1_link_115 = wrist_2_link_46 - wrist_1_link_114;
-    const double wrist_1_link_116 = wrist_2_link_42 * wrist_1_link_10;
-    const double wrist_1_link_117 = wrist_2_link_49 - wrist_1_link_116;
-    const double wrist_1_link_118 = wrist_1_link_3 * wrist_1_link_85;
-    const double wrist_1_link_119 = wrist_1_link_1 * wrist_1_link_77;
-    const double wrist_1_link_120 = wrist_1_link_118 + wrist_1_link_119;
-    const double wrist_1_link_121 = wrist_1_link_3 * wrist_1_link_87;
-    const double wrist_1_link_122 = wrist_1_link_1 * wrist_1_link_83;
-    const double wrist_1_link_123 = wrist_1_link_121 + wrist_1_link_122;
-    const double wrist_1_link_124 = wrist_1_link_3 * wrist_1_link_81;
-    const double wrist_1_link_125 = wrist_1_link_1 * wrist_1_link_85;
-    const double wrist_1_link_126 = wrist_1_link_124 + wrist_1_link_125;
-    const double wrist_1_link_127 = wrist_1_link_3 * wrist_1_link_77;
-    const double wrist_1_link_128 = wrist_1_link_125 - wrist_1_link_127;
-    const double wrist_1_link_129 = wrist_1_link_1 * wrist_1_link_87;
-    const double wrist_1_link_130 = wrist_1_link_3 * wrist_1_link_83;
-    const double wrist_1_link_131 = wrist_1_link_129 - wrist_1_link_130;
-    const double wrist_1_link_132 = wrist_1_link_1 * wrist_1_link_81;
-    const double wrist_1_link_133 = wrist_1_link_132 - wrist_1_link_118;
-    const double wrist_1_link_134 = wrist_1_link_3 * wrist_1_link_126;
-    const double wrist_1_link_135 = wrist_1_link_1 * wrist_1_link_120;
-    const double wrist_1_link_136 = wrist_1_link_134 + wrist_1_link_135;
-    const double wrist_1_link_137 = wrist_1_link_1 * wrist_1_link_133;
-    const double wrist_1_link_138 = wrist_1_link_3 * wrist_1_link_128;
-    const double wrist_1_link_139 = wrist_1_link_137 - wrist_1_link_138;
-    const double wrist_1_link_140 = wrist_1_link_3 * wrist_1_link_133;
-    const double wrist_1_link_141 = wrist_1_link_1 * wrist_1_link_128;
-    const double wrist_1_link_142 = wrist_1_link_140 + wrist_1_link_141;
-    const double wrist_1_link_143 = wrist_1_link_3 * wrist_1_link_93;
-    const double wrist_1_link_144 = wrist_1_link_1 * wrist_1_link_89;
-    const double wrist_1_link_145 = wrist_1_link_143 + wrist_1_link_144;
-    const double wrist_1_link_146 = wrist_1_link_1 * wrist_1_link_93;
-    const double wrist_1_link_147 = wrist_1_link_3 * wrist_1_link_89;
-    const double wrist_1_link_148 = wrist_1_link_146 - wrist_1_link_147;
-    const double wrist_1_link_149 = wrist_1_link_3 * wrist_1_link_99;
-    const double wrist_1_link_150 = wrist_1_link_1 * wrist_1_link_95;
-    const double wrist_1_link_151 = wrist_1_link_149 + wrist_1_link_150;
-    const double wrist_1_link_152 = wrist_1_link_1 * wrist_1_link_99;
-    const double wrist_1_link_153 = wrist_1_link_3 * wrist_1_link_95;
-    const double wrist_1_link_154 = wrist_1_link_152 - wrist_1_link_153;
-    const double wrist_1_link_155 = wrist_1_link_3 * wrist_1_link_105;
-    const double wrist_1_link_156 = wrist_1_link_1 * wrist_1_link_101;
-    const double wrist_1_link_157 = wrist_1_link_155 + wrist_1_link_156;
-    const double wrist_1_link_158 = wrist_1_link_1 * wrist_1_link_105;
-    const double wrist_1_link_159 = wrist_1_link_3 * wrist_1_link_101;
-    const double wrist_1_link_160 = wrist_1_link_159 - wrist_1_link_158;
-    const double wrist_1_link_161 = wrist_1_link_3 * wrist_1_link_157;
-    const double wrist_1_link_162 = wrist_1_link_1 * wrist_1_link_145;
-    const double wrist_1_link_163 = wrist_1_link_162 - wrist_1_link_161;
-    const double wrist_1_link_164 = wrist_1_link_3 * wrist_1_link_103;
-    const double wrist_1_link_165 = wrist_1_link_1 * wrist_1_link_91;
-    const double wrist_1_link_166 = wrist_1_link_165 - wrist_1_link_164;
-    const double wrist_1_link_167 = wrist_1_link_3 * wrist_1_link_160;
-    const double wrist_1_link_168 = wrist_1_link_1 * wrist_1_link_148;
-    const double wrist_1_link_169 = wrist_1_link_167 + wrist_1_link_168;
-    const double wrist_1_link_170 = wrist_1_link_1 * wrist_1_link_157;
-    const double wrist_1_link_171 = wrist_1_link_3 * wrist_1_link_145;
-    const double wrist_1_link_172 = wrist_1_link_170 + wrist_1_link_171;
-    const double wrist_1_link_173 = wrist_1_link_1 * wrist_1_link_103;
-    const double wrist_1_link_174 = wrist_1_link_3 * wrist_1_link_91;
-    const double wrist_1_link_175 = wrist_1_link_173 + wrist_1_link_174;
-    const double wrist_1_link_176 = wrist_1_link_1 * wrist_1_link_160;
-    const double wrist_1_link_177 = wrist_1_link_3 * wrist_1_link_148;
-    const double wrist_1_link_178 = wrist_1_link_176 - wrist_1_link_177;
-    const double wrist_1_link_179 = wrist_1_link_3 * wrist_1_link_115;
-    const double wrist_1_link_180 = wrist_1_link_1 * wrist_1_link_107;
-    const double wrist_1_link_181 = wrist_1_link_179 + wrist_1_link_180;
-    const double wrist_1_link_182 = wrist_1_link_3 * wrist_1_link_117;
-    const double wrist_1_link_183 = wrist_1_link_1 * wrist_1_link_113;
-    const double wrist_1_link_184 = wrist_1_link_182 + wrist_1_link_183;
-    const double wrist_1_link_185 = wrist_1_link_3 * wrist_1_link_111;
-    const double wrist_1_link_186 = wrist_1_link_1 * wrist_1_link_115;
-    const double wrist_1_link_187 = wrist_1_link_185 + wrist_1_link_186;
-    const double wrist_1_link_188 = wrist_1_link_3 * wrist_1_link_107;
-    const double wrist_1_link_189 = wrist_1_link_186 - wrist_1_link_188;
-    const double wrist_1_link_190 = wrist_1_link_1 * wrist_1_link_117;
-    const double wrist_1_link_191 = wrist_1_link_3 * wrist_1_link_113;
-    const double wrist_1_link_192 = wrist_1_link_190 - wrist_1_link_191;
-    const double wrist_1_link_193 = wrist_1_link_1 * wrist_1_link_111;
-    const double wrist_1_link_194 = wrist_1_link_193 - wrist_1_link_179;
-    const double wrist_1_link_195 = wrist_1_link_3 * wrist_1_link_187;
-    const double wrist_1_link_196 = wrist_1_link_1 * wrist_1_link_181;
-    const double wrist_1_link_197 = wrist_1_link_195 + wrist_1_link_196;
-    const double wrist_1_link_198 = wrist_1_link_1 * wrist_1_link_194;
-    const double wrist_1_link_199 = wrist_1_link_3 * wrist_1_link_189;
-    const double wrist_1_link_200 = wrist_1_link_198 - wrist_1_link_199;
-    const double wrist_1_link_201 = wrist_1_link_3 * wrist_1_link_194;
-    const double wrist_1_link_202 = wrist_1_link_1 * wrist_1_link_189;
-    const double wrist_1_link_203 = wrist_1_link_201 + wrist_1_link_202;
-    const double wrist_1_link_204 = 0.39225 * wrist_1_link_166;
-    const double wrist_1_link_205 = 0.39225 * wrist_1_link_163;
-    const double wrist_1_link_206 = 0.39225 * wrist_1_link_97;
-    const double wrist_1_link_207 = 0.39225 * wrist_1_link_151;
-    const double wrist_1_link_208 = (-0.39225) * wrist_1_link_175;
-    const double wrist_1_link_209 = (-0.39225) * wrist_1_link_172;
-    const double wrist_1_link_210 = 0.39225 * wrist_1_link_184;
-    const double wrist_1_link_211 = 0.39225 * wrist_1_link_197;
-    const double wrist_1_link_212 = 0.39225 * wrist_1_link_109;
-    const double wrist_1_link_213 = 0.39225 * wrist_1_link_192;
-    const double wrist_1_link_214 = 0.39225 * wrist_1_link_203;
-    const double wrist_1_link_215 = 0.39225 * wrist_1_link_212;
-    const double wrist_1_link_216 = (-0.39225) * wrist_1_link_210;
-    const double wrist_1_link_217 = (-0.39225) * wrist_1_link_211;
-    const double wrist_1_link_218 = wrist_1_link_163 - wrist_1_link_210;
-    const double wrist_1_link_219 = wrist_1_link_166 - wrist_1_link_212;
-    const double wrist_1_link_220 = wrist_1_link_169 - wrist_1_link_213;
-    const double wrist_1_link_221 = wrist_1_link_151 + wrist_1_link_211;
-    const double wrist_1_link_222 = wrist_1_link_97 + wrist_1_link_210;
-    const double wrist_1_link_223 = wrist_1_link_154 + wrist_1_link_214;
-    const double wrist_1_link_224 = wrist_1_link_136 - wrist_1_link_204;
-    const double wrist_1_link_225 = wrist_1_link_224 - wrist_1_link_204;
-    const double wrist_1_link_226 = wrist_1_link_215 + wrist_1_link_225;
-    const double wrist_1_link_227 = wrist_1_link_79 + wrist_1_link_207;
-    const double wrist_1_link_228 = wrist_1_link_207 + wrist_1_link_227;
-    const double wrist_1_link_229 = wrist_1_link_228 - wrist_1_link_217;
-    const double wrist_1_link_230 = wrist_1_link_123 + wrist_1_link_205;
-    const double wrist_1_link_231 = wrist_1_link_230 - wrist_1_link_206;
-    const double wrist_1_link_232 = wrist_1_link_216 + wrist_1_link_231;
-    const double wrist_1_link_233 = wrist_1_link_142 - wrist_1_link_208;
-    const double wrist_1_link_234 = wrist_1_link_131 + wrist_1_link_209;
-    const double wrist_1_link_235 = 0.19163081355599998 + wrist_1_link_226;
-    const double wrist_1_link_236 = 0.19163081355599998 + wrist_1_link_229;
-    const double wrist_1_link_237 = 0.004095 + wrist_1_link_139;
-    const double wrist_1_link_238 = (-0.56875) + wrist_1_link_219;
-    const double wrist_1_link_239 = 0.56875 + wrist_1_link_221;
-    const double wrist_1_link_240 = 2.275 + wrist_1_link_197;
-    const double wrist_1_link_241 = 2.275 + wrist_1_link_109;
-    const double wrist_1_link_242 = 2.275 + wrist_1_link_200;
+    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
+    const double forearm_link_0 = wrist_1_link_1 * wrist_1_link_4;
+    const double forearm_link_1 = wrist_1_link_3 * wrist_1_link_4;
 
-    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; articulated inertia pass
-    const double forearm_link_0 = 1.0 / wrist_1_link_236;
-    const double forearm_link_1 = wrist_1_link_232 * forearm_link_0;
-    const double forearm_link_2 = wrist_1_link_236 * forearm_link_0;
-    const double forearm_link_3 = wrist_1_link_234 * forearm_link_0;
-    const double forearm_link_4 = wrist_1_link_239 * forearm_link_0;
-    const double forearm_link_5 = wrist_1_link_222 * forearm_link_0;
-    const double forearm_link_6 = wrist_1_link_223 * forearm_link_0;
-    const double forearm_link_7 = trig.sin_q[2] * forearm_link_6;
-    const double forearm_link_8 = trig.cos_q[2] * forearm_link_4;
-    const double forearm_link_9 = forearm_link_7 + forearm_link_8;
-    const double forearm_link_10 = trig.cos_q[2] * forearm_link_6;
-    const double forearm_link_11 = trig.sin_q[2] * forearm_link_4;
-    const double forearm_link_12 = forearm_link_10 - forearm_link_11;
-    const double forearm_link_13 = 0.425 * forearm_link_5;
-    const double forearm_link_14 = (-0.1197) * forearm_link_12;
-    const double forearm_link_15 = forearm_link_14 - forearm_link_13;
-    const double forearm_link_16 = 0.425 * forearm_link_9;
-    const double forearm_link_17 = (-0.1197) * forearm_link_9;
-    const double forearm_link_18 = trig.sin_q[2] * forearm_link_3;
-    const double forearm_link_19 = trig.cos_q[2] * forearm_link_1;
-    const double forearm_link_20 = forearm_link_18 + forearm_link_19;
-    const double forearm_link_21 = trig.cos_q[2] * forearm_link_3;
-    const double forearm_link_22 = trig.sin_q[2] * forearm_link_1;
-    const double forearm_link_23 = forearm_link_21 - forearm_link_22;
-    const double forearm_link_24 = forearm_link_15 + forearm_link_20;
-    const double forearm_link_25 = forearm_link_2 + forearm_link_16;
-    const double forearm_link_26 = forearm_link_23 - forearm_link_17;
-    const double forearm_link_27 = wrist_1_link_26 * forearm_link_1;
-    const double forearm_link_28 = wrist_1_link_26 * forearm_link_2;
-    const double forearm_link_29 = wrist_1_link_26 * forearm_link_3;
-    const double forearm_link_30 = wrist_1_link_26 * forearm_link_4;
-    const double forearm_link_31 = wrist_1_link_26 * forearm_link_5;
-    const double forearm_link_32 = wrist_1_link_26 * forearm_link_6;
-    const double forearm_link_33 = wrist_1_link_25 - forearm_link_27;
-    const double forearm_link_34 = wrist_1_link_26 - forearm_link_28;
-    const double forearm_link_35 = wrist_1_link_24 - forearm_link_29;
-    const double forearm_link_36 = wrist_1_link_13 - forearm_link_30;
-    const double forearm_link_37 = wrist_1_link_9 - forearm_link_31;
-    const double forearm_link_38 = wrist_1_link_16 - forearm_link_32;
-    const double forearm_link_39 = trig.sin_q[2] * forearm_link_38;
-    const double forearm_link_40 = trig.cos_q[2] * forearm_link_36;
-    const double forearm_link_41 = forearm_link_39 + forearm_link_40;
-    const double forearm_link_42 = trig.cos_q[2] * forearm_link_38;
-    const double forearm_link_43 = trig.sin_q[2] * forearm_link_36;
-    const double forearm_link_44 = forearm_link_42 - forearm_link_43;
-    const double forearm_link_45 = 0.425 * forearm_link_37;
-    const double forearm_link_46 = (-0.1197) * forearm_link_44;
-    const double forearm_link_47 = forearm_link_46 - forearm_link_45;
-    const double forearm_link_48 = 0.425 * forearm_link_41;
-    const double forearm_link_49 = (-0.1197) * forearm_link_41;
-    const double forearm_link_50 = trig.sin_q[2] * forearm_link_35;
-    const double forearm_link_51 = trig.cos_q[2] * forearm_link_33;
-    const double forearm_link_52 = forearm_link_50 + forearm_link_51;
-    const double forearm_link_53 = trig.cos_q[2] * forearm_link_35;
-    const double forearm_link_54 = trig.sin_q[2] * forearm_link_33;
-    const double forearm_link_55 = forearm_link_53 - forearm_link_54;
-    const double forearm_link_56 = forearm_link_47 + forearm_link_52;
-    const double forearm_link_57 = forearm_link_34 + forearm_link_48;
-    const double forearm_link_58 = forearm_link_55 - forearm_link_49;
-    const double forearm_link_59 = wrist_1_link_51 * forearm_link_1;
-    const double forearm_link_60 = wrist_1_link_51 * forearm_link_2;
-    const double forearm_link_61 = wrist_1_link_51 * forearm_link_3;
-    const double forearm_link_62 = wrist_1_link_51 * forearm_link_4;
-    const double forearm_link_63 = wrist_1_link_51 * forearm_link_5;
-    const double forearm_link_64 = wrist_1_link_51 * forearm_link_6;
-    const double forearm_link_65 = wrist_1_link_50 - forearm_link_59;
-    const double forearm_link_66 = wrist_1_link_51 - forearm_link_60;
-    const double forearm_link_67 = wrist_1_link_49 - forearm_link_61;
-    const double forearm_link_68 = wrist_1_link_38 + forearm_link_62;
-    const double forearm_link_69 = wrist_1_link_31 + forearm_link_63;
-    const double forearm_link_70 = wrist_1_link_41 - forearm_link_64;
-    const double forearm_link_71 = trig.sin_q[2] * forearm_link_70;
-    const double forearm_link_72 = trig.cos_q[2] * forearm_link_68;
-    const double forearm_link_73 = forearm_link_71 - forearm_link_72;
-    const double forearm_link_74 = trig.cos_q[2] * forearm_link_70;
-    const double forearm_link_75 = trig.sin_q[2] * forearm_link_68;
-    const double forearm_link_76 = forearm_link_74 + forearm_link_75;
-    const double forearm_link_77 = forearm_link_69 * (-0.425);
-    const double forearm_link_78 = (-0.1197) * forearm_link_76;
-    const double forearm_link_79 = forearm_link_78 - forearm_link_77;
-    const double forearm_link_80 = 0.425 * forearm_link_73;
-    const double forearm_link_81 = (-0.1197) * forearm_link_73;
-    const double forearm_link_82 = trig.sin_q[2] * forearm_link_67;
-    const double forearm_link_83 = trig.cos_q[2] * forearm_link_65;
-    const double forearm_link_84 = forearm_link_82 + forearm_link_83;
-    const double forearm_link_85 = trig.cos_q[2] * forearm_link_67;
-    const double forearm_link_86 = trig.sin_q[2] * forearm_link_65;
-    const double forearm_link_87 = forearm_link_85 - forearm_link_86;
-    const double forearm_link_88 = forearm_link_79 + forearm_link_84;
-    const double forearm_link_89 = forearm_link_66 + forearm_link_80;
-    const double forearm_link_90 = forearm_link_87 - forearm_link_81;
-    const double forearm_link_91 = wrist_1_link_75 * forearm_link_1;
-    const double forearm_link_92 = wrist_1_link_75 * forearm_link_2;
-    const double forearm_link_93 = wrist_1_link_75 * forearm_link_3;
-    const double forearm_link_94 = wrist_1_link_75 * forearm_link_4;
-    const double forearm_link_95 = wrist_1_link_75 * forearm_link_5;
-    const double forearm_link_96 = wrist_1_link_75 * forearm_link_6;
-    const double forearm_link_97 = wrist_1_link_74 + forearm_link_91;
-    const double forearm_link_98 = wrist_1_link_75 - forearm_link_92;
-    const double forearm_link_99 = wrist_1_link_73 - forearm_link_93;
-    const double forearm_link_100 = wrist_1_link_62 + forearm_link_94;
-    const double forearm_link_101 = wrist_1_link_56 + forearm_link_95;
-    const double forearm_link_102 = wrist_1_link_65 - forearm_link_96;
-    const double forearm_link_103 = trig.sin_q[2] * forearm_link_102;
-    const double forearm_link_104 = trig.cos_q[2] * forearm_link_100;
-    const double forearm_link_105 = forearm_link_103 - forearm_link_104;
-    const double forearm_link_106 = trig.cos_q[2] * forearm_link_102;
-    const double forearm_link_107 = trig.sin_q[2] * forearm_link_100;
-    const double forearm_link_108 = forearm_link_106 + forearm_link_107;
-    const double forearm_link_109 = (-0.425) * forearm_link_101;
-    const double forearm_link_110 = (-0.1197) * forearm_link_108;
-    const double forearm_link_111 = forearm_link_110 - forearm_link_109;
-    const double forearm_link_112 = 0.425 * forearm_link_105;
-    const double forearm_link_113 = (-0.1197) * forearm_link_105;
-    const double forearm_link_114 = trig.sin_q[2] * forearm_link_99;
-    const double forearm_link_115 = trig.cos_q[2] * forearm_link_97;
-    const double forearm_link_116 = forearm_link_114 - forearm_link_115;
-    const double forearm_link_117 = trig.cos_q[2] * forearm_link_99;
-    const double forearm_link_118 = trig.sin_q[2] * forearm_link_97;
-    const double forearm_link_119 = forearm_link_117 + forearm_link_118;
-    const double forearm_link_120 = forearm_link_111 + forearm_link_116;
-    const double forearm_link_121 = forearm_link_98 + forearm_link_112;
-    const double forearm_link_122 = forearm_link_119 - forearm_link_113;
-    const double forearm_link_123 = wrist_1_link_232 * forearm_link_1;
-    const double forearm_link_124 = wrist_1_link_235 - forearm_link_123;
-    const double forearm_link_125 = wrist_1_link_236 * forearm_link_2;
-    const double forearm_link_126 = wrist_1_link_236 - forearm_link_125;
-    const double forearm_link_127 = wrist_1_link_234 * forearm_link_3;
-    const double forearm_link_128 = wrist_1_link_237 - forearm_link_127;
-    const double forearm_link_129 = wrist_1_link_232 * forearm_link_2;
-    const double forearm_link_130 = wrist_1_link_232 - forearm_link_129;
-    const double forearm_link_131 = wrist_1_link_232 * forearm_link_3;
-    const double forearm_link_132 = wrist_1_link_233 - forearm_link_131;
-    const double forearm_link_133 = wrist_1_link_236 * forearm_link_3;
-    const double forearm_link_134 = wrist_1_link_234 - forearm_link_133;
-    const double forearm_link_135 = wrist_1_link_232 * forearm_link_4;
-    const double forearm_link_136 = wrist_1_link_218 - forearm_link_135;
-    const double forearm_link_137 = wrist_1_link_232 * forearm_link_5;
-    const double forearm_link_138 = wrist_1_link_238 - forearm_link_137;
-    const double forearm_link_139 = wrist_1_link_232 * forearm_link_6;
-    const double forearm_link_140 = wrist_1_link_220 - forearm_link_139;
-    const double forearm_link_141 = wrist_1_link_236 * forearm_link_4;
-    const double forearm_link_142 = wrist_1_link_239 - forearm_link_141;
-    const double forearm_link_143 = wrist_1_link_236 * forearm_link_5;
-    const double forearm_link_144 = wrist_1_link_222 - forearm_link_143;
-    const double forearm_link_145 = wrist_1_link_236 * forearm_link_6;
-    const double forearm_link_146 = wrist_1_link_223 - forearm_link_145;
-    const double forearm_link_147 = wrist_1_link_234 * forearm_link_4;
-    const double forearm_link_148 = wrist_1_link_172 + forearm_link_147;
-    const double forearm_link_149 = wrist_1_link_234 * forearm_link_5;
-    const double forearm_link_150 = wrist_1_link_175 + forearm_link_149;
-    const double forearm_link_151 = wrist_1_link_234 * forearm_link_6;
-    const double forearm_link_152 = wrist_1_link_178 - forearm_link_151;
-    const double forearm_link_153 = wrist_1_link_239 * forearm_link_4;
-    const double forearm_link_154 = wrist_1_link_240 - forearm_link_153;
-    const double forearm_link_155 = wrist_1_link_222 * forearm_link_5;
-    const double forearm_link_156 = wrist_1_link_241 - forearm_link_155;
-    const double forearm_link_157 = wrist_1_link_223 * forearm_link_6;
-    const double forearm_link_158 = wrist_1_link_242 - forearm_link_157;
-    const double forearm_link_159 = wrist_1_link_239 * forearm_link_5;
-    const double forearm_link_160 = wrist_1_link_184 - forearm_link_159;
-    const double forearm_link_161 = wrist_1_link_239 * forearm_link_6;
-    const double forearm_link_162 = wrist_1_link_203 - forearm_link_161;
-    const double forearm_link_163 = wrist_1_link_222 * forearm_link_6;
-    const double forearm_link_164 = wrist_1_link_192 - forearm_link_163;
-    const double forearm_link_165 = trig.sin_q[2] * forearm_link_132;
-    const double forearm_link_166 = trig.cos_q[2] * forearm_link_124;
-    const double forearm_link_167 = forearm_link_165 + forearm_link_166;
-    const double forearm_link_168 = trig.sin_q[2] * forearm_link_134;
-    const double forearm_link_169 = trig.cos_q[2] * forearm_link_130;
-    const double forearm_link_170 = forearm_link_168 + forearm_link_169;
-    const double forearm_link_171 = trig.sin_q[2] * forearm_link_128;
-    const double forearm_link_172 = trig.cos_q[2] * forearm_link_132;
-    const double forearm_link_173 = forearm_link_171 + forearm_link_172;
-    const double forearm_link_174 = trig.sin_q[2] * forearm_link_124;
-    const double forearm_link_175 = forearm_link_172 - forearm_link_174;
-    const double forearm_link_176 = trig.cos_q[2] * forearm_link_134;
-    const double forearm_link_177 = trig.sin_q[2] * forearm_link_130;
-    const double forearm_link_178 = forearm_link_176 - forearm_link_177;
-    const double forearm_link_179 = trig.cos_q[2] * forearm_link_128;
-    const double forearm_link_180 = forearm_link_179 - forearm_link_165;
-    const double forearm_link_181 = trig.sin_q[2] * forearm_link_173;
-    const double forearm_link_182 = trig.cos_q[2] * forearm_link_167;
-    const double forearm_link_183 = forearm_link_181 + forearm_link_182;
-    const double forearm_link_184 = trig.cos_q[2] * forearm_link_180;
-    const double forearm_link_185 = trig.sin_q[2] * forearm_link_175;
-    const double forearm_link_186 = forearm_link_184 - forearm_link_185;
-    const double forearm_link_187 = trig.sin_q[2] * forearm_link_180;
-    const double forearm_link_188 = trig.cos_q[2] * forearm_link_175;
-    const double forearm_link_189 = forearm_link_187 + forearm_link_188;
-    const double forearm_link_190 = trig.sin_q[2] * forearm_link_140;
-    const double forearm_link_191 = trig.cos_q[2] * forearm_link_136;
-    const double forearm_link_192 = forearm_link_190 + forearm_link_191;
-    const double forearm_link_193 = trig.cos_q[2] * forearm_link_140;
-    const double forearm_link_194 = trig.sin_q[2] * forearm_link_136;
-    const double forearm_link_195 = forearm_link_193 - forearm_link_194;
-    const double forearm_link_196 = trig.sin_q[2] * forearm_link_146;
-    const double forearm_link_197 = trig.cos_q[2] * forearm_link_142;
-    const double forearm_link_198 = forearm_link_196 + forearm_link_197;
-    const double forearm_link_199 = trig.cos_q[2] * forearm_link_146;
-    const double forearm_link_200 = trig.sin_q[2] * forearm_link_142;
-    const double forearm_link_201 = forearm_link_199 - forearm_link_200;
-    const double forearm_link_202 = trig.sin_q[2] * forearm_link_152;
-    const double forearm_link_203 = trig.cos_q[2] * forearm_link_148;
-    const double forearm_link_204 = forearm_link_202 - forearm_link_203;
-    const double forearm_link_205 = trig.cos_q[2] * forearm_link_152;
-    const double forearm_link_206 = trig.sin_q[2] * forearm_link_148;
-    const double forearm_link_207 = forearm_link_205 + forearm_link_206;
-    const double forearm_link_208 = trig.sin_q[2] * forearm_link_204;
-    const double forearm_link_209 = trig.cos_q[2] * forearm_link_192;
-    const double forearm_link_210 = forearm_link_208 + forearm_link_209;
-    const double forearm_link_211 = trig.sin_q[2] * forearm_link_150;
-    const double forearm_link_212 = trig.cos_q[2] * forearm_link_138;
-    const double forearm_link_213 = forearm_link_212 - forearm_link_211;
-    const double forearm_link_214 = trig.sin_q[2] * forearm_link_207;
-    const double forearm_link_215 = trig.cos_q[2] * forearm_link_195;
-    const double forearm_link_216 = forearm_link_214 + forearm_link_215;
-    const double forearm_link_217 = trig.cos_q[2] * forearm_link_204;
-    const double forearm_link_218 = trig.sin_q[2] * forearm_link_192;
-    const double forearm_link_219 = forearm_link_217 - forearm_link_218;
-    const double forearm_link_220 = trig.cos_q[2] * forearm_link_150;
-    const double forearm_link_221 = trig.sin_q[2] * forearm_link_138;
-    const double forearm_link_222 = forearm_link_220 + forearm_link_221;
-    const double forearm_link_223 = trig.cos_q[2] * forearm_link_207;
-    const double forearm_link_224 = trig.sin_q[2] * forearm_link_195;
-    const double forearm_link_225 = forearm_link_223 - forearm_link_224;
-    const double forearm_link_226 = trig.sin_q[2] * forearm_link_162;
-    const double forearm_link_227 = trig.cos_q[2] * forearm_link_154;
-    const double forearm_link_228 = forearm_link_226 + forearm_link_227;
-    const double forearm_link_229 = trig.sin_q[2] * forearm_link_164;
-    const double forearm_link_230 = trig.cos_q[2] * forearm_link_160;
-    const double forearm_link_231 = forearm_link_229 + forearm_link_230;
-    const double forearm_link_232 = trig.sin_q[2] * forearm_link_158;
-    const double forearm_link_233 = trig.cos_q[2] * forearm_link_162;
-    const double forearm_link_234 = forearm_link_232 + forearm_link_233;
-    const double forearm_link_235 = trig.sin_q[2] * forearm_link_154;
-    const double forearm_link_236 = forearm_link_233 - forearm_link_235;
-    const double forearm_link_237 = trig.cos_q[2] * forearm_link_164;
-    const double forearm_link_238 = trig.sin_q[2] * forearm_link_160;
-    const double forearm_link_239 = forearm_link_237 - forearm_link_238;
-    const double forearm_link_240 = trig.cos_q[2] * forearm_link_158;
-    const double forearm_link_241 = forearm_link_240 - forearm_link_226;
-    const double forearm_link_242 = trig.sin_q[2] * forearm_link_234;
-    const double forearm_link_243 = trig.cos_q[2] * forearm_link_228;
-    const double forearm_link_244 = forearm_link_242 + forearm_link_243;
-    const double forearm_link_245 = trig.cos_q[2] * forearm_link_241;
-    const double forearm_link_246 = trig.sin_q[2] * forearm_link_236;
-    const double forearm_link_247 = forearm_link_245 - forearm_link_246;
-    const double forearm_link_248 = trig.sin_q[2] * forearm_link_241;
-    const double forearm_link_249 = trig.cos_q[2] * forearm_link_236;
-    const double forearm_link_250 = forearm_link_248 + forearm_link_249;
-    const double forearm_link_251 = (-0.1197) * forearm_link_216;
-    const double forearm_link_252 = 0.425 * forearm_link_213;
-    const double forearm_link_253 = forearm_link_252 - forearm_link_251;
-    const double forearm_link_254 = 0.425 * forearm_link_210;
-    const double forearm_link_255 = (-0.1197) * forearm_link_210;
-    const double forearm_link_256 = (-0.1197) * forearm_link_201;
-    const double forearm_link_257 = 0.425 * forearm_link_144;
-    const double forearm_link_258 = forearm_link_257 - forearm_link_256;
-    const double forearm_link_259 = 0.425 * forearm_link_198;
-    const double forearm_link_260 = (-0.1197) * forearm_link_198;
-    const double forearm_link_261 = (-0.1197) * forearm_link_225;
-    const double forearm_link_262 = (-0.425) * forearm_link_222;
-    const double forearm_link_263 = forearm_link_262 - forearm_link_261;
-    const double forearm_link_264 = 0.425 * forearm_link_219;
-    const double forearm_link_265 = (-0.1197) * forearm_link_219;
-    const double forearm_link_266 = (-0.1197) * forearm_link_250;
-    const double forearm_link_267 = 0.425 * forearm_link_231;
-    const double forearm_link_268 = forearm_link_267 - forearm_link_266;
-    const double forearm_link_269 = 0.425 * forearm_link_244;
-    const double forearm_link_270 = (-0.1197) * forearm_link_244;
-    const double forearm_link_271 = (-0.1197) * forearm_link_239;
-    const double forearm_link_272 = 0.425 * forearm_link_156;
-    const double forearm_link_273 = forearm_link_272 - forearm_link_271;
-    const double forearm_link_274 = (-0.1197) * forearm_link_231;
-    const double forearm_link_275 = (-0.1197) * forearm_link_247;
-    const double forearm_link_276 = 0.425 * forearm_link_239;
-    const double forearm_link_277 = forearm_link_276 - forearm_link_275;
-    const double forearm_link_278 = 0.425 * forearm_link_250;
-    const double forearm_link_279 = 0.425 * forearm_link_273;
-    const double forearm_link_280 = (-0.1197) * forearm_link_277;
-    const double forearm_link_281 = forearm_link_280 - forearm_link_279;
-    const double forearm_link_282 = (-0.425) * forearm_link_267;
-    const double forearm_link_283 = forearm_link_278 * 0.1197;
-    const double forearm_link_284 = forearm_link_283 - forearm_link_282;
-    const double forearm_link_285 = (-0.425) * forearm_link_269;
-    const double forearm_link_286 = 0.425 * forearm_link_274;
-    const double forearm_link_287 = (-0.1197) * forearm_link_266;
-    const double forearm_link_288 = forearm_link_287 - forearm_link_286;
-    const double forearm_link_289 = 0.425 * forearm_link_270;
-    const double forearm_link_290 = (-0.1197) * forearm_link_270;
-    const double forearm_link_291 = forearm_link_210 - forearm_link_268;
-    const double forearm_link_292 = forearm_link_216 - forearm_link_277;
-    const double forearm_link_293 = forearm_link_198 + forearm_link_269;
-    const double forearm_link_294 = forearm_link_201 + forearm_link_278;
-    const double forearm_link_295 = forearm_link_219 - forearm_link_270;
-    const double forearm_link_296 = forearm_link_225 - forearm_link_266;
-    const double forearm_link_297 = forearm_link_183 - forearm_link_253;
-    const double forearm_link_298 = forearm_link_297 - forearm_link_253;
-    const double forearm_link_299 = forearm_link_298 - forearm_link_281;
-    const double forearm_link_300 = forearm_link_126 + forearm_link_259;
-    const double forearm_link_301 = forearm_link_259 + forearm_link_300;
-    const double forearm_link_302 = forearm_link_301 - forearm_link_285;
-    const double forearm_link_303 = forearm_link_186 - forearm_link_265;
-    const double forearm_link_304 = forearm_link_303 - forearm_link_265;
-    const double forearm_link_305 = forearm_link_290 + forearm_link_304;
-    const double forearm_link_306 = forearm_link_170 + forearm_link_254;
-    const double forearm_link_307 = forearm_link_306 - forearm_link_258;
-    const double forearm_link_308 = forearm_link_307 - forearm_link_284;
-    const double forearm_link_309 = forearm_link_189 - forearm_link_255;
-    const double forearm_link_310 = forearm_link_309 - forearm_link_263;
-    const double forearm_link_311 = forearm_link_310 - forearm_link_288;
-    const double forearm_link_312 = forearm_link_178 - forearm_link_260;
-    const double forearm_link_313 = forearm_link_264 + forearm_link_312;
-    const double forearm_link_314 = forearm_link_313 - forearm_link_289;
-    const double forearm_link_315 = 0.8849018759100001 + forearm_link_299;
-    const double forearm_link_316 = 0.8849018759100001 + forearm_link_302;
-    const double forearm_link_317 = 0.0151074 + forearm_link_305;
-    const double forearm_link_318 = 2.3500400000000004 + forearm_link_293;
-    const double forearm_link_319 = 8.393 + forearm_link_244;
-    const double forearm_link_320 = 8.393 + forearm_link_247;
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
+    const double upper_arm_link_4 = trig.sin_q[2] * forearm_link_1;
+    const double upper_arm_link_5 = trig.cos_q[2] * forearm_link_0;
+    const double upper_arm_link_6 = upper_arm_link_5 - upper_arm_link_4;
+    const double upper_arm_link_7 = trig.cos_q[2] * forearm_link_1;
+    const double upper_arm_link_8 = trig.sin_q[2] * forearm_link_0;
+    const double upper_arm_link_9 = upper_arm_link_7 + upper_arm_link_8;
 
-    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; articulated inertia pass
-    const double upper_arm_link_4 = 1.0 / forearm_link_316;
-    const double upper_arm_link_5 = forearm_link_308 * upper_arm_link_4;
-    const double upper_arm_link_6 = forearm_link_314 * upper_arm_link_4;
-    const double upper_arm_link_7 = forearm_link_318 * upper_arm_link_4;
-    const double upper_arm_link_8 = forearm_link_294 * upper_arm_link_4;
-    const double upper_arm_link_9 = upper_arm_link_3 * upper_arm_link_8;
-    const double upper_arm_link_10 = upper_arm_link_1 * upper_arm_link_7;
-    const double upper_arm_link_11 = upper_arm_link_9 + upper_arm_link_10;
-    const double upper_arm_link_12 = 0.13585 * upper_arm_link_11;
-    const double upper_arm_link_13 = upper_arm_link_1 * upper_arm_link_6;
-    const double upper_arm_link_14 = upper_arm_link_3 * upper_arm_link_5;
+    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; a descendant's column of M carried up
+    const double shoulder_link_0 = upper_arm_link_1 * upper_arm_link_9;
+    const double shoulder_link_1 = upper_arm_link_3 * upper_arm_link_6;
+    const double shoulder_link_2 = shoulder_link_0 + shoulder_link_1;
+
+    // ---- link 'wrist_2_link' (4) <- 'wrist_1_link' (3); joint 'wrist_2_joint': revolute +z; composite inertia
+    const double wrist_2_link_0 = trig.cos_q[4] * wrist_3_link_16;
+    const double wrist_2_link_1 = trig.sin_q[4] * (-0.12999255384415);
+    const double wrist_2_link_2 = trig.cos_q[4] * wrist_3_link_12;
+    const double wrist_2_link_3 = trig.sin_q[4] * wrist_3_link_16;
+    const double wrist_2_link_4 = trig.cos_q[4] * 0.12999255384415;
+    const double wrist_2_link_5 = trig.sin_q[4] * wrist_3_link_12;
+    const double wrist_2_link_6 = trig.sin_q[4] * wrist_2_link_1;
+    const double wrist_2_link_7 = trig.cos_q[4] * wrist_2_link_0;
+    const double wrist_2_link_8 = wrist_2_link_7 - wrist_2_link_6;
+    const double wrist_2_link_9 = trig.cos_q[4] * wrist_2_link_4;
+    const double wrist_2_link_10 = trig.sin_q[4] * wrist_2_link_3;
+    const double wrist_2_link_11 = wrist_2_link_9 + wrist_2_link_10;
+    const double wrist_2_link_12 = trig.sin_q[4] * wrist_2_link_4;
+    const double wrist_2_link_13 = trig.cos_q[4] * wrist_2_link_3;
+    const double wrist_2_link_14 = wrist_2_link_13 - wrist_2_link_12;
+    const double wrist_2_link_15 = wrist_2_link_8 + 0.0121682781;
+    const double wrist_2_link_16 = wrist_2_link_11 - 0.0121682781;
+    const double wrist_2_link_17 = 0.0121682781 + wrist_2_link_16;
+    const double wrist_2_link_18 = wrist_3_link_17 + 0.0121682781;
+    const double wrist_2_link_19 = wrist_2_link_5 - 0.0016539803549999999;
+    const double wrist_2_link_20 = 0.111172755531 + wrist_2_link_15;
+    const double wrist_2_link_21 = 0.111172755531 + wrist_2_link_17;
+    const double wrist_2_link_22 = 0.21942 + wrist_2_link_18;
+
+    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
+    const double forearm_link_2 = wrist_1_link_3 * wrist_3_link_17;
+    const double forearm_link_3 = wrist_1_link_1 * wrist_2_link_2;
+    const double forearm_link_4 = forearm_link_2 + forearm_link_3;
+    const double forearm_link_5 = wrist_1_link_1 * wrist_3_link_17;
+    const double forearm_link_6 = wrist_1_link_3 * wrist_2_link_2;
+    const double forearm_link_7 = forearm_link_5 - forearm_link_6;
+
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
+    const double upper_arm_link_10 = trig.sin_q[2] * forearm_link_7;
+    const double upper_arm_link_11 = trig.cos_q[2] * forearm_link_4;
+    const double upper_arm_link_12 = upper_arm_link_10 + upper_arm_link_11;
+    const double upper_arm_link_13 = trig.cos_q[2] * forearm_link_7;
+    const double upper_arm_link_14 = trig.sin_q[2] * forearm_link_4;
     const double upper_arm_link_15 = upper_arm_link_13 - upper_arm_link_14;
-    const double upper_arm_link_16 = upper_arm_link_15 - upper_arm_link_12;
-    const double upper_arm_link_17 = forearm_link_25 * upper_arm_link_5;
-    const double upper_arm_link_18 = forearm_link_25 * upper_arm_link_6;
-    const double upper_arm_link_19 = forearm_link_25 * upper_arm_link_7;
-    const double upper_arm_link_20 = forearm_link_25 * upper_arm_link_8;
-    const double upper_arm_link_21 = forearm_link_24 - upper_arm_link_17;
-    const double upper_arm_link_22 = forearm_link_26 - upper_arm_link_18;
-    const double upper_arm_link_23 = forearm_link_9 - upper_arm_link_19;
-    const double upper_arm_link_24 = forearm_link_12 - upper_arm_link_20;
-    const double upper_arm_link_25 = upper_arm_link_3 * upper_arm_link_24;
-    const double upper_arm_link_26 = upper_arm_link_1 * upper_arm_link_23;
+
+    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; a descendant's column of M carried up
+    const double shoulder_link_3 = upper_arm_link_1 * upper_arm_link_15;
+    const double shoulder_link_4 = upper_arm_link_3 * upper_arm_link_12;
+    const double shoulder_link_5 = shoulder_link_3 - shoulder_link_4;
+
+    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; composite inertia
+    const double wrist_1_link_6 = wrist_1_link_3 * 0.017784735;
+    const double wrist_1_link_7 = wrist_1_link_1 * 0.017784735;
+    const double wrist_1_link_8 = wrist_1_link_7 + 1.030009275;
+    const double wrist_1_link_9 = wrist_1_link_1 * wrist_2_link_20;
+    const double wrist_1_link_10 = forearm_link_6 + wrist_1_link_9;
+    const double wrist_1_link_11 = wrist_1_link_3 * wrist_2_link_19;
+    const double wrist_1_link_12 = wrist_1_link_1 * wrist_2_link_14;
+    const double wrist_1_link_13 = wrist_1_link_11 + wrist_1_link_12;
+    const double wrist_1_link_14 = wrist_1_link_3 * wrist_2_link_22;
+    const double wrist_1_link_15 = forearm_link_3 + wrist_1_link_14;
+    const double wrist_1_link_16 = wrist_1_link_3 * wrist_2_link_20;
+    const double wrist_1_link_17 = forearm_link_3 - wrist_1_link_16;
+    const double wrist_1_link_18 = wrist_1_link_1 * wrist_2_link_19;
+    const double wrist_1_link_19 = wrist_1_link_3 * wrist_2_link_14;
+    const double wrist_1_link_20 = wrist_1_link_18 - wrist_1_link_19;
+    const double wrist_1_link_21 = wrist_1_link_1 * wrist_2_link_22;
+    const double wrist_1_link_22 = wrist_1_link_21 - forearm_link_6;
+    const double wrist_1_link_23 = wrist_1_link_3 * wrist_1_link_15;
+    const double wrist_1_link_24 = wrist_1_link_1 * wrist_1_link_10;
+    const double wrist_1_link_25 = wrist_1_link_23 + wrist_1_link_24;
+    const double wrist_1_link_26 = wrist_1_link_1 * wrist_1_link_22;
+    const double wrist_1_link_27 = wrist_1_link_3 * wrist_1_link_17;
+    const double wrist_1_link_28 = wrist_1_link_26 - wrist_1_link_27;
+    const double wrist_1_link_29 = wrist_1_link_3 * wrist_1_link_22;
+    const double wrist_1_link_30 = wrist_1_link_1 * wrist_1_link_17;
+    const double wrist_1_link_31 = wrist_1_link_29 + wrist_1_link_30;
+    const double wrist_1_link_32 = 0.39225 * wrist_1_link_8;
+    const double wrist_1_link_33 = 0.39225 * wrist_1_link_7;
+    const double wrist_1_link_34 = wrist_1_link_32 + wrist_1_link_33;
+    const double wrist_1_link_35 = wrist_1_link_25 + wrist_1_link_34;
+    const double wrist_1_link_36 = wrist_2_link_21 + wrist_1_link_34;
+    const double wrist_1_link_37 = wrist_1_link_28 - wrist_1_link_33;
+    const double wrist_1_link_38 = wrist_1_link_37 - wrist_1_link_32;
+    const double wrist_1_link_39 = wrist_1_link_34 + wrist_1_link_38;
+    const double wrist_1_link_40 = 0.39225 * wrist_1_link_6;
+    const double wrist_1_link_41 = wrist_1_link_31 - wrist_1_link_40;
+    const double wrist_1_link_42 = wrist_1_link_20 - 0.051322656825;
+    const double wrist_1_link_43 = 0.56875 + wrist_1_link_8;
+    const double wrist_1_link_44 = 0.19163081355599998 + wrist_1_link_35;
+    const double wrist_1_link_45 = 0.19163081355599998 + wrist_1_link_36;
+    const double wrist_1_link_46 = 0.004095 + wrist_1_link_39;
+
+    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; a descendant's column of M carried up
+    const double forearm_link_8 = wrist_1_link_3 * (-0.017784735);
+    const double forearm_link_9 = wrist_2_link_21 + wrist_1_link_33;
+
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
+    const double upper_arm_link_16 = trig.sin_q[2] * forearm_link_8;
+    const double upper_arm_link_17 = trig.cos_q[2] * wrist_1_link_7;
+    const double upper_arm_link_18 = upper_arm_link_16 + upper_arm_link_17;
+    const double upper_arm_link_19 = trig.cos_q[2] * forearm_link_8;
+    const double upper_arm_link_20 = trig.sin_q[2] * wrist_1_link_7;
+    const double upper_arm_link_21 = upper_arm_link_19 - upper_arm_link_20;
+    const double upper_arm_link_22 = (-0.1197) * upper_arm_link_21;
+    const double upper_arm_link_23 = 0.425 * upper_arm_link_18;
+    const double upper_arm_link_24 = (-0.1197) * upper_arm_link_18;
+    const double upper_arm_link_25 = trig.sin_q[2] * wrist_1_link_20;
+    const double upper_arm_link_26 = trig.cos_q[2] * wrist_1_link_13;
     const double upper_arm_link_27 = upper_arm_link_25 + upper_arm_link_26;
-    const double upper_arm_link_28 = 0.13585 * upper_arm_link_27;
-    const double upper_arm_link_29 = upper_arm_link_1 * upper_arm_link_22;
-    const double upper_arm_link_30 = upper_arm_link_3 * upper_arm_link_21;
-    const double upper_arm_link_31 = upper_arm_link_29 - upper_arm_link_30;
-    const double upper_arm_link_32 = upper_arm_link_31 - upper_arm_link_28;
-    const double upper_arm_link_33 = forearm_link_57 * upper_arm_link_5;
-    const double upper_arm_link_34 = forearm_link_57 * upper_arm_link_6;
-    const double upper_arm_link_35 = forearm_link_57 * upper_arm_link_7;
-    const double upper_arm_link_36 = forearm_link_57 * upper_arm_link_8;
-    const double upper_arm_link_37 = forearm_link_56 - upper_arm_link_33;
-    const double upper_arm_link_38 = forearm_link_58 - upper_arm_link_34;
-    const double upper_arm_link_39 = forearm_link_41 - upper_arm_link_35;
-    const double upper_arm_link_40 = forearm_link_44 - upper_arm_link_36;
-    const double upper_arm_link_41 = upper_arm_link_3 * upper_arm_link_40;
-    const double upper_arm_link_42 = upper_arm_link_1 * upper_arm_link_39;
-    const double upper_arm_link_43 = upper_arm_link_41 + upper_arm_link_42;
-    const double upper_arm_link_44 = 0.13585 * upper_arm_link_43;
-    const double upper_arm_link_45 = upper_arm_link_1 * upper_arm_link_38;
-    const double upper_arm_link_46 = upper_arm_link_3 * upper_arm_link_37;
+    const double upper_arm_link_28 = trig.cos_q[2] * wrist_1_link_20;
+    const double upper_arm_link_29 = trig.sin_q[2] * wrist_1_link_13;
+    const double upper_arm_link_30 = upper_arm_link_28 - upper_arm_link_29;
+    const double upper_arm_link_31 = upper_arm_link_22 + upper_arm_link_27;
+    const double upper_arm_link_32 = forearm_link_9 + upper_arm_link_23;
+    const double upper_arm_link_33 = upper_arm_link_30 - upper_arm_link_24;
+
+    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; a descendant's column of M carried up
+    const double shoulder_link_6 = upper_arm_link_3 * upper_arm_link_21;
+    const double shoulder_link_7 = upper_arm_link_1 * upper_arm_link_18;
+    const double shoulder_link_8 = shoulder_link_6 + shoulder_link_7;
+    const double shoulder_link_9 = 0.13585 * shoulder_link_8;
+    const double shoulder_link_10 = upper_arm_link_1 * upper_arm_link_33;
+    const double shoulder_link_11 = upper_arm_link_3 * upper_arm_link_31;
+    const double shoulder_link_12 = shoulder_link_10 - shoulder_link_11;
+    const double shoulder_link_13 = shoulder_link_12 - shoulder_link_9;
+
+    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; composite inertia
+    const double forearm_link_10 = trig.sin_q[2] * wrist_1_link_43;
+    const double forearm_link_11 = trig.cos_q[2] * wrist_1_link_6;
+    const double forearm_link_12 = forearm_link_10 + forearm_link_11;
+    const double forearm_link_13 = trig.cos_q[2] * wrist_1_link_43;
+    const double forearm_link_14 = trig.sin_q[2] * wrist_1_link_6;
+    const double forearm_link_15 = forearm_link_13 - forearm_link_14;
+    const double forearm_link_16 = forearm_link_15 + 2.0828824999999997;
+    const double forearm_link_17 = trig.sin_q[2] * wrist_1_link_41;
+    const double forearm_link_18 = trig.cos_q[2] * wrist_1_link_44;
+    const double forearm_link_19 = forearm_link_17 + forearm_link_18;
+    const double forearm_link_20 = trig.sin_q[2] * wrist_1_link_42;
+    const double forearm_link_21 = upper_arm_link_26 + forearm_link_20;
+    const double forearm_link_22 = trig.sin_q[2] * wrist_1_link_46;
+    const double forearm_link_23 = trig.cos_q[2] * wrist_1_link_41;
+    const double forearm_link_24 = forearm_link_22 + forearm_link_23;
+    const double forearm_link_25 = trig.sin_q[2] * wrist_1_link_44;
+    const double forearm_link_26 = forearm_link_23 - forearm_link_25;
+    const double forearm_link_27 = trig.cos_q[2] * wrist_1_link_42;
+    const double forearm_link_28 = forearm_link_27 - upper_arm_link_29;
+    const double forearm_link_29 = trig.cos_q[2] * wrist_1_link_46;
+    const double forearm_link_30 = forearm_link_29 - forearm_link_17;
+    const double forearm_link_31 = trig.sin_q[2] * forearm_link_24;
+    const double forearm_link_32 = trig.cos_q[2] * forearm_link_19;
+    const double forearm_link_33 = forearm_link_31 + forearm_link_32;
+    const double forearm_link_34 = trig.cos_q[2] * forearm_link_30;
+    const double forearm_link_35 = trig.sin_q[2] * forearm_link_26;
+    const double forearm_link_36 = forearm_link_34 - forearm_link_35;
+    const double forearm_link_37 = trig.sin_q[2] * forearm_link_30;
+    const double forearm_link_38 = trig.cos_q[2] * forearm_link_26;
+    const double forearm_link_39 = forearm_link_37 + forearm_link_38;
+    const double forearm_link_40 = 0.425 * forearm_link_16;
+    const double forearm_link_41 = forearm_link_40 + 0.054558784790999994;
+    const double forearm_link_42 = 0.425 * forearm_link_15;
+    const double forearm_link_43 = forearm_link_42 + (-0.01566175149);
+    const double forearm_link_44 = forearm_link_41 + forearm_link_43;
+    const double forearm_link_45 = forearm_link_33 + forearm_link_44;
+    const double forearm_link_46 = wrist_1_link_45 - (-0.01566175149);
+    const double forearm_link_47 = forearm_link_46 - 0.054558784790999994;
+    const double forearm_link_48 = forearm_link_44 + forearm_link_47;
+    const double forearm_link_49 = forearm_link_36 - forearm_link_42;
+    const double forearm_link_50 = forearm_link_49 - forearm_link_40;
+    const double forearm_link_51 = forearm_link_44 + forearm_link_50;
+    const double forearm_link_52 = (-0.1197) * forearm_link_12;
+    const double forearm_link_53 = forearm_link_21 - forearm_link_52;
+    const double forearm_link_54 = 0.425 * forearm_link_12;
+    const double forearm_link_55 = forearm_link_39 - forearm_link_54;
+    const double forearm_link_56 = (-0.1197) * forearm_link_16;
+    const double forearm_link_57 = forearm_link_28 - 0.0556077225;
+    const double forearm_link_58 = forearm_link_57 - forearm_link_56;
+    const double forearm_link_59 = 2.3500400000000004 + forearm_link_16;
+    const double forearm_link_60 = 0.8849018759100001 + forearm_link_45;
+    const double forearm_link_61 = 0.8849018759100001 + forearm_link_48;
+    const double forearm_link_62 = 0.0151074 + forearm_link_51;
+
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; a descendant's column of M carried up
+    const double upper_arm_link_34 = forearm_link_12 * 0.1197;
+    const double upper_arm_link_35 = (-0.1197) * forearm_link_15;
+    const double upper_arm_link_36 = forearm_link_21 + upper_arm_link_34;
+    const double upper_arm_link_37 = wrist_1_link_45 + forearm_link_42;
+    const double upper_arm_link_38 = forearm_link_28 - upper_arm_link_35;
+
+    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; a descendant's column of M carried up
+    const double shoulder_link_14 = upper_arm_link_3 * forearm_link_12;
+    const double shoulder_link_15 = upper_arm_link_1 * forearm_link_15;
+    const double shoulder_link_16 = shoulder_link_15 - shoulder_link_14;
+    const double shoulder_link_17 = 0.13585 * shoulder_link_16;
+    const double shoulder_link_18 = upper_arm_link_1 * upper_arm_link_38;
+    const double shoulder_link_19 = upper_arm_link_3 * upper_arm_link_36;
+    const double shoulder_link_20 = shoulder_link_18 - shoulder_link_19;
+    const double shoulder_link_21 = shoulder_link_20 - shoulder_link_17;
+
+    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; composite inertia
+    const double upper_arm_link_39 = upper_arm_link_1 * forearm_link_59;
+    const double upper_arm_link_40 = upper_arm_link_39 - shoulder_link_14;
+    const double upper_arm_link_41 = upper_arm_link_3 * forearm_link_55;
+    const double upper_arm_link_42 = upper_arm_link_1 * forearm_link_55;
+    const double upper_arm_link_43 = upper_arm_link_3 * forearm_link_60;
+    const double upper_arm_link_44 = upper_arm_link_42 - upper_arm_link_43;
+    const double upper_arm_link_45 = upper_arm_link_1 * forearm_link_58;
+    const double upper_arm_link_46 = upper_arm_link_3 * forearm_link_53;
     const double upper_arm_link_47 = upper_arm_link_45 - upper_arm_link_46;
-    const double upper_arm_link_48 = upper_arm_link_47 - upper_arm_link_44;
-    const double upper_arm_link_49 = forearm_link_89 * upper_arm_link_5;
-    const double upper_arm_link_50 = forearm_link_89 * upper_arm_link_6;
-    const double upper_arm_link_51 = forearm_link_89 * upper_arm_link_7;
-    const double upper_arm_link_52 = forearm_link_89 * upper_arm_link_8;
-    const double upper_arm_link_53 = forearm_link_88 - upper_arm_link_49;
-    const double upper_arm_link_54 = forearm_link_90 - upper_arm_link_50;
-    const double upper_arm_link_55 = forearm_link_73 - upper_arm_link_51;
-    const double upper_arm_link_56 = forearm_link_76 - upper_arm_link_52;
-    const double upper_arm_link_57 = upper_arm_link_3 * upper_arm_link_56;
-    const double upper_arm_link_58 = upper_arm_link_1 * upper_arm_link_55;
-    const double upper_arm_link_59 = upper_arm_link_57 + upper_arm_link_58;
-    const double upper_arm_link_60 = 0.13585 * upper_arm_link_59;
-    const double upper_arm_link_61 = upper_arm_link_1 * upper_arm_link_54;
-    const double upper_arm_link_62 = upper_arm_link_3 * upper_arm_link_53;
-    const double upper_arm_link_63 = upper_arm_link_61 - upper_arm_link_62;
-    const double upper_arm_link_64 = upper_arm_link_63 - upper_arm_link_60;
-    const double upper_arm_link_65 = forearm_link_121 * upper_arm_link_5;
-    const double upper_arm_link_66 = forearm_link_121 * upper_arm_link_6;
-    const double upper_arm_link_67 = forearm_link_121 * upper_arm_link_7;
-    const double upper_arm_link_68 = forearm_link_121 * upper_arm_link_8;
-    const double upper_arm_link_69 = forearm_link_120 - upper_arm_link_65;
-    const double upper_arm_link_70 = forearm_link_122 - upper_arm_link_66;
-    const double upper_arm_link_71 = forearm_link_105 - upper_arm_link_67;
-    const double upper_arm_link_72 = forearm_link_108 - upper_arm_link_68;
-    const double upper_arm_link_73 = upper_arm_link_3 * upper_arm_link_72;
-    const double upper_arm_link_74 = upper_arm_link_1 * upper_arm_link_71;
-    const double upper_arm_link_75 = upper_arm_link_73 + upper_arm_link_74;
-    const double upper_arm_link_76 = 0.13585 * upper_arm_link_75;
-    const double upper_arm_link_77 = upper_arm_link_1 * upper_arm_link_70;
-    const double upper_arm_link_78 = upper_arm_link_3 * upper_arm_link_69;
-    const double upper_arm_link_79 = upper_arm_link_77 - upper_arm_link_78;
-    const double upper_arm_link_80 = upper_arm_link_79 - upper_arm_link_76;
-    const double upper_arm_link_81 = forearm_link_308 * upper_arm_link_5;
-    const double upper_arm_link_82 = forearm_link_315 - upper_arm_link_81;
-    const double upper_arm_link_83 = forearm_link_314 * upper_arm_link_6;
-    const double upper_arm_link_84 = forearm_link_317 - upper_arm_link_83;
-    const double upper_arm_link_85 = forearm_link_308 * upper_arm_link_6;
-    const double upper_arm_link_86 = forearm_link_311 - upper_arm_link_85;
-    const double upper_arm_link_87 = forearm_link_308 * upper_arm_link_7;
-    const double upper_arm_link_88 = forearm_link_291 - upper_arm_link_87;
-    const double upper_arm_link_89 = forearm_link_308 * upper_arm_link_8;
-    const double upper_arm_link_90 = forearm_link_292 - upper_arm_link_89;
-    const double upper_arm_link_91 = forearm_link_314 * upper_arm_link_7;
-    const double upper_arm_link_92 = forearm_link_295 - upper_arm_link_91;
-    const double upper_arm_link_93 = forearm_link_314 * upper_arm_link_8;
-    const double upper_arm_link_94 = forearm_link_296 - upper_arm_link_93;
-    const double upper_arm_link_95 = forearm_link_318 * upper_arm_link_7;
-    const double upper_arm_link_96 = forearm_link_319 - upper_arm_link_95;
-    const double upper_arm_link_97 = forearm_link_294 * upper_arm_link_8;
-    const double upper_arm_link_98 = forearm_link_320 - upper_arm_link_97;
-    const double upper_arm_link_99 = forearm_link_318 * upper_arm_link_8;
-    const double upper_arm_link_100 = forearm_link_250 - upper_arm_link_99;
-    const double upper_arm_link_101 = upper_arm_link_3 * upper_arm_link_86;
-    const double upper_arm_link_102 = upper_arm_link_1 * upper_arm_link_86;
-    const double upper_arm_link_103 = upper_arm_link_3 * upper_arm_link_82;
-    const double upper_arm_link_104 = upper_arm_link_102 - upper_arm_link_103;
-    const double upper_arm_link_105 = upper_arm_link_1 * upper_arm_link_84;
-    const double upper_arm_link_106 = upper_arm_link_105 - upper_arm_link_101;
-    const double upper_arm_link_107 = upper_arm_link_1 * upper_arm_link_106;
-    const double upper_arm_link_108 = upper_arm_link_3 * upper_arm_link_104;
-    const double upper_arm_link_109 = upper_arm_link_107 - upper_arm_link_108;
-    const double upper_arm_link_110 = upper_arm_link_3 * upper_arm_link_90;
-    const double upper_arm_link_111 = upper_arm_link_1 * upper_arm_link_88;
-    const double upper_arm_link_112 = upper_arm_link_110 + upper_arm_link_111;
-    const double upper_arm_link_113 = upper_arm_link_3 * upper_arm_link_94;
-    const double upper_arm_link_114 = upper_arm_link_1 * upper_arm_link_92;
-    const double upper_arm_link_115 = upper_arm_link_113 + upper_arm_link_114;
-    const double upper_arm_link_116 = upper_arm_link_1 * upper_arm_link_115;
-    const double upper_arm_link_117 = upper_arm_link_3 * upper_arm_link_112;
-    const double upper_arm_link_118 = upper_arm_link_116 - upper_arm_link_117;
-    const double upper_arm_link_119 = upper_arm_link_3 * upper_arm_link_100;
-    const double upper_arm_link_120 = upper_arm_link_1 * upper_arm_link_96;
-    const double upper_arm_link_121 = upper_arm_link_119 + upper_arm_link_120;
-    const double upper_arm_link_122 = upper_arm_link_3 * upper_arm_link_98;
-    const double upper_arm_link_123 = upper_arm_link_1 * upper_arm_link_100;
-    const double upper_arm_link_124 = upper_arm_link_122 + upper_arm_link_123;
-    const double upper_arm_link_125 = upper_arm_link_3 * upper_arm_link_124;
-    const double upper_arm_link_126 = upper_arm_link_1 * upper_arm_link_121;
-    const double upper_arm_link_127 = upper_arm_link_125 + upper_arm_link_126;
-    const double upper_arm_link_128 = 0.13585 * upper_arm_link_118;
-    const double upper_arm_link_129 = 0.13585 * upper_arm_link_127;
-    const double upper_arm_link_130 = 0.13585 * upper_arm_link_129;
-    const double upper_arm_link_131 = upper_arm_link_109 - upper_arm_link_128;
-    const double upper_arm_link_132 = upper_arm_link_131 - upper_arm_link_128;
-    const double upper_arm_link_133 = upper_arm_link_130 + upper_arm_link_132;
-    const double upper_arm_link_134 = 0.00666 + upper_arm_link_133;
+    const double upper_arm_link_48 = upper_arm_link_1 * forearm_link_62;
+    const double upper_arm_link_49 = upper_arm_link_48 - upper_arm_link_41;
+    const double upper_arm_link_50 = upper_arm_link_1 * upper_arm_link_49;
+    const double upper_arm_link_51 = upper_arm_link_3 * upper_arm_link_44;
+    const double upper_arm_link_52 = upper_arm_link_50 - upper_arm_link_51;
+    const double upper_arm_link_53 = upper_arm_link_52 + 0.12150210104175002;
+    const double upper_arm_link_54 = 0.13585 * upper_arm_link_40;
+    const double upper_arm_link_55 = upper_arm_link_47 - upper_arm_link_54;
+    const double upper_arm_link_56 = 0.00666 + upper_arm_link_53;
 
-    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; articulated inertia pass
-    const double shoulder_link_0 = 1.0 / upper_arm_link_134;
-
-    // ---- link 'shoulder_link' (0) <- base; joint 'shoulder_pan_joint': revolute +z; acceleration pass
-    const double shoulder_link_1 = upper_arm_link_16 * shoulder_link_0;
-    const double shoulder_link_2 = -shoulder_link_1;
-    const double shoulder_link_3 = upper_arm_link_32 * shoulder_link_0;
-    const double shoulder_link_4 = -shoulder_link_3;
-    const double shoulder_link_5 = upper_arm_link_48 * shoulder_link_0;
-    const double shoulder_link_6 = -shoulder_link_5;
-    const double shoulder_link_7 = upper_arm_link_64 * shoulder_link_0;
-    const double shoulder_link_8 = -shoulder_link_7;
-    const double shoulder_link_9 = upper_arm_link_80 * shoulder_link_0;
-    const double shoulder_link_10 = -shoulder_link_9;
-
-    // ---- link 'upper_arm_link' (1) <- 'shoulder_link' (0); joint 'shoulder_lift_joint': revolute +y; acceleration pass
-    const double upper_arm_link_135 = upper_arm_link_3 * shoulder_link_1;
-    const double upper_arm_link_136 = upper_arm_link_1 * shoulder_link_1;
-    const double upper_arm_link_137 = (-0.13585) * shoulder_link_1;
-    const double upper_arm_link_138 = upper_arm_link_1 * upper_arm_link_137;
-    const double upper_arm_link_139 = upper_arm_link_3 * upper_arm_link_137;
-    const double upper_arm_link_140 = forearm_link_294 * upper_arm_link_139;
-    const double upper_arm_link_141 = forearm_link_318 * upper_arm_link_138;
-    const double upper_arm_link_142 = upper_arm_link_140 + upper_arm_link_141;
-    const double upper_arm_link_143 = forearm_link_314 * upper_arm_link_136;
-    const double upper_arm_link_144 = forearm_link_308 * upper_arm_link_135;
-    const double upper_arm_link_145 = upper_arm_link_144 - upper_arm_link_143;
-    const double upper_arm_link_146 = upper_arm_link_145 - upper_arm_link_142;
-    const double upper_arm_link_147 = 1.0 - upper_arm_link_146;
-    const double upper_arm_link_148 = upper_arm_link_4 * upper_arm_link_147;
-    const double upper_arm_link_149 = upper_arm_link_3 * shoulder_link_3;
-    const double upper_arm_link_150 = upper_arm_link_1 * shoulder_link_3;
-    const double upper_arm_link_151 = (-0.13585) * shoulder_link_3;
-    const double upper_arm_link_152 = upper_arm_link_1 * upper_arm_link_151;
-    const double upper_arm_link_153 = upper_arm_link_3 * upper_arm_link_151;
-    const double upper_arm_link_154 = forearm_link_294 * upper_arm_link_153;
-    const double upper_arm_link_155 = forearm_link_318 * upper_arm_link_152;
-    const double upper_arm_link_156 = upper_arm_link_154 + upper_arm_link_155;
-    const double upper_arm_link_157 = forearm_link_314 * upper_arm_link_150;
-    const double upper_arm_link_158 = forearm_link_308 * upper_arm_link_149;
-    const double upper_arm_link_159 = upper_arm_link_158 - upper_arm_link_157;
-    const double upper_arm_link_160 = upper_arm_link_159 - upper_arm_link_156;
-    const double upper_arm_link_161 = forearm_link_25 + upper_arm_link_160;
-    const double upper_arm_link_162 = upper_arm_link_4 * upper_arm_link_161;
-    const double upper_arm_link_163 = -upper_arm_link_162;
-    const double upper_arm_link_164 = upper_arm_link_3 * shoulder_link_5;
-    const double upper_arm_link_165 = upper_arm_link_1 * shoulder_link_5;
-    const double upper_arm_link_166 = (-0.13585) * shoulder_link_5;
-    const double upper_arm_link_167 = upper_arm_link_1 * upper_arm_link_166;
-    const double upper_arm_link_168 = upper_arm_link_3 * upper_arm_link_166;
-    const double upper_arm_link_169 = forearm_link_294 * upper_arm_link_168;
-    const double upper_arm_link_170 = forearm_link_318 * upper_arm_link_167;
-    const double upper_arm_link_171 = upper_arm_link_169 + upper_arm_link_170;
-    const double upper_arm_link_172 = forearm_link_314 * upper_arm_link_165;
-    const double upper_arm_link_173 = forearm_link_308 * upper_arm_link_164;
-    const double upper_arm_link_174 = upper_arm_link_173 - upper_arm_link_172;
-    const double upper_arm_link_175 = upper_arm_link_174 - upper_arm_link_171;
-    const double upper_arm_link_176 = forearm_link_57 + upper_arm_link_175;
-    const double upper_arm_link_177 = upper_arm_link_4 * upper_arm_link_176;
-    const double upper_arm_link_178 = -upper_arm_link_177;
-    const double upper_arm_link_179 = upper_arm_link_3 * shoulder_link_7;
-    const double upper_arm_link_180 = upper_arm_link_1 * shoulder_link_7;
-    const double upper_arm_link_181 = (-0.13585) * shoulder_link_7;
-    const double upper_arm_link_182 = upper_arm_link_1 * upper_arm_link_181;
-    const double upper_arm_link_183 = upper_arm_link_3 * upper_arm_link_181;
-    const double upper_arm_link_184 = forearm_link_294 * upper_arm_link_183;
-    const double upper_arm_link_185 = forearm_link_318 * upper_arm_link_182;
-    const double upper_arm_link_186 = upper_arm_link_184 + upper_arm_link_185;
-    const double upper_arm_link_187 = forearm_link_314 * upper_arm_link_180;
-    const double upper_arm_link_188 = forearm_link_308 * upper_arm_link_179;
-    const double upper_arm_link_189 = upper_arm_link_188 - upper_arm_link_187;
-    const double upper_arm_link_190 = upper_arm_link_189 - upper_arm_link_186;
-    const double upper_arm_link_191 = forearm_link_89 + upper_arm_link_190;
-    const double upper_arm_link_192 = upper_arm_link_4 * upper_arm_link_191;
-    const double upper_arm_link_193 = -upper_arm_link_192;
-    const double upper_arm_link_194 = upper_arm_link_3 * shoulder_link_9;
-    const double upper_arm_link_195 = upper_arm_link_1 * shoulder_link_9;
-    const double upper_arm_link_196 = (-0.13585) * shoulder_link_9;
-    const double upper_arm_link_197 = upper_arm_link_1 * upper_arm_link_196;
-    const double upper_arm_link_198 = upper_arm_link_3 * upper_arm_link_196;
-    const double upper_arm_link_199 = forearm_link_294 * upper_arm_link_198;
-    const double upper_arm_link_200 = forearm_link_318 * upper_arm_link_197;
-    const double upper_arm_link_201 = upper_arm_link_199 + upper_arm_link_200;
-    const double upper_arm_link_202 = forearm_link_314 * upper_arm_link_195;
-    const double upper_arm_link_203 = forearm_link_308 * upper_arm_link_194;
-    const double upper_arm_link_204 = upper_arm_link_203 - upper_arm_link_202;
-    const double upper_arm_link_205 = upper_arm_link_204 - upper_arm_link_201;
-    const double upper_arm_link_206 = forearm_link_121 + upper_arm_link_205;
-    const double upper_arm_link_207 = upper_arm_link_4 * upper_arm_link_206;
-    const double upper_arm_link_208 = -upper_arm_link_207;
-
-    // ---- link 'forearm_link' (2) <- 'upper_arm_link' (1); joint 'elbow_joint': revolute +y; acceleration pass
-    const double forearm_link_321 = trig.sin_q[2] * upper_arm_link_150;
-    const double forearm_link_322 = trig.cos_q[2] * upper_arm_link_149;
-    const double forearm_link_323 = forearm_link_321 + forearm_link_322;
-    const double forearm_link_324 = trig.cos_q[2] * upper_arm_link_150;
-    const double forearm_link_325 = trig.sin_q[2] * upper_arm_link_149;
-    const double forearm_link_326 = forearm_link_325 - forearm_link_324;
-    const double forearm_link_327 = (-0.425) * upper_arm_link_162;
-    const double forearm_link_328 = 0.1197 * upper_arm_link_150;
-    const double forearm_link_329 = forearm_link_328 - forearm_link_327;
-    const double forearm_link_330 = 0.425 * upper_arm_link_149;
-    const double forearm_link_331 = (-0.1197) * upper_arm_link_149;
-    const double forearm_link_332 = upper_arm_link_152 + forearm_link_329;
-    const double forearm_link_333 = forearm_link_331 - upper_arm_link_153;
-    const double forearm_link_334 = trig.sin_q[2] * forearm_link_333;
-    const double forearm_link_335 = trig.cos_q[2] * forearm_link_332;
-    const double forearm_link_336 = forearm_link_334 + forearm_link_335;
-    const double forearm_link_337 = trig.cos_q[2] * forearm_link_333;
-    const double forearm_link_338 = trig.sin_q[2] * forearm_link_332;
-    const double forearm_link_339 = forearm_link_337 - forearm_link_338;
-    const double forearm_link_340 = wrist_1_link_223 * forearm_link_339;
-    const double forearm_link_341 = wrist_1_link_222 * forearm_link_330;
-    const double forearm_link_342 = wrist_1_link_239 * forearm_link_336;
-    const double forearm_link_343 = forearm_link_341 + forearm_link_342;
-    const double forearm_link_344 = forearm_link_340 - forearm_link_343;
-    const double forearm_link_345 = wrist_1_link_234 * forearm_link_326;
-    const double forearm_link_346 = wrist_1_link_236 * upper_arm_link_162;
-    const double forearm_link_347 = wrist_1_link_232 * forearm_link_323;
-    const double forearm_link_348 = forearm_link_347 - forearm_link_346;
-    const double forearm_link_349 = forearm_link_345 + forearm_link_348;
-    const double forearm_link_350 = forearm_link_344 + forearm_link_349;
-    const double forearm_link_351 = 1.0 - forearm_link_350;
-    const double forearm_link_352 = forearm_link_0 * forearm_link_351;
-    const double forearm_link_353 = trig.sin_q[2] * upper_arm_link_165;
-    const double forearm_link_354 = trig.cos_q[2] * upper_arm_link_164;
-    const double forearm_link_355 = forearm_link_353 + forearm_link_354;
-    const double forearm_link_356 = trig.cos_q[2] * upper_arm_link_165;
-    const double forearm_link_357 = trig.sin_q[2] * upper_arm_link_164;
-    const double forearm_link_358 = forearm_link_357 - forearm_link_356;
-    const double forearm_link_359 = (-0.425) * upper_arm_link_177;
-    const double forearm_link_360 = 0.1197 * upper_arm_link_165;
-    const double forearm_link_361 = forearm_link_360 - forearm_link_359;
-    const double forearm_link_362 = 0.425 * upper_arm_link_164;
-    const double forearm_link_363 = (-0.1197) * upper_arm_link_164;
-    const double forearm_link_364 = upper_arm_link_167 + forearm_link_361;
-    const double forearm_link_365 = forearm_link_363 - upper_arm_link_168;
-    const double forearm_link_366 = trig.sin_q[2] * forearm_link_365;
-    const double forearm_link_367 = trig.cos_q[2] * forearm_link_364;
-    const double forearm_link_368 = forearm_link_366 + forearm_link_367;
-    const double forearm_link_369 = trig.cos_q[2] * forearm_link_365;
-    const double forearm_link_370 = trig.sin_q[2] * forearm_link_364;
-    const double forearm_link_371 = forearm_link_369 - forearm_link_370;
-    const double forearm_link_372 = wrist_1_link_223 * forearm_link_371;
-    const double forearm_link_373 = wrist_1_link_222 * forearm_link_362;
-    const double forearm_link_374 = wrist_1_link_239 * forearm_link_368;
-    const double forearm_link_375 = forearm_link_373 + forearm_link_374;
-    const double forearm_link_376 = forearm_link_372 - forearm_link_375;
-    const double forearm_link_377 = wrist_1_link_234 * forearm_link_358;
-    const double forearm_link_378 = wrist_1_link_236 * upper_arm_link_177;
-    const double forearm_link_379 = wrist_1_link_232 * forearm_link_355;
-    const double forearm_link_380 = forearm_link_379 - forearm_link_378;
-    const double forearm_link_381 = forearm_link_377 + forearm_link_380;
-    const double forearm_link_382 = forearm_link_376 + forearm_link_381;
-    const double forearm_link_383 = wrist_1_link_26 + forearm_link_382;
-    const double forearm_link_384 = forearm_link_0 * forearm_link_383;
-    const double forearm_link_385 = -forearm_link_384;
-    const double forearm_link_386 = upper_arm_link_177 + forearm_link_384;
-    const double forearm_link_387 = trig.sin_q[2] * upper_arm_link_180;
-    const double forearm_link_388 = trig.cos_q[2] * upper_arm_link_179;
-    const double forearm_link_389 = forearm_link_387 + forearm_link_388;
-    const double forearm_link_390 = trig.cos_q[2] * upper_arm_link_180;
-    const double forearm_link_391 = trig.sin_q[2] * upper_arm_link_179;
-    const double forearm_link_392 = forearm_link_391 - forearm_link_390;
-    const double forearm_link_393 = (-0.425) * upper_arm_link_192;
-    const double forearm_link_394 = 0.1197 * upper_arm_link_180;
-    const double forearm_link_395 = forearm_link_394 - forearm_link_393;
-    const double forearm_link_396 = 0.425 * upper_arm_link_179;
-    const double forearm_link_397 = (-0.1197) * upper_arm_link_179;
-    const double forearm_link_398 = upper_arm_link_182 + forearm_link_395;
-    const double forearm_link_399 = forearm_link_397 - upper_arm_link_183;
-    const double forearm_link_400 = trig.sin_q[2] * forearm_link_399;
-    const double forearm_link_401 = trig.cos_q[2] * forearm_link_398;
-    const double forearm_link_402 = forearm_link_400 + forearm_link_401;
-    const double forearm_link_403 = trig.cos_q[2] * forearm_link_399;
-    const double forearm_link_404 = trig.sin_q[2] * forearm_link_398;
-    const double forearm_link_405 = forearm_link_403 - forearm_link_404;
-    const double forearm_link_406 = wrist_1_link_223 * forearm_link_405;
-    const double forearm_link_407 = wrist_1_link_222 * forearm_link_396;
-    const double forearm_link_408 = wrist_1_link_239 * forearm_link_402;
-    const double forearm_link_409 = forearm_link_407 + forearm_link_408;
-    const double forearm_link_410 = forearm_link_406 - forearm_link_409;
-    const double forearm_link_411 = wrist_1_link_234 * forearm_link_392;
-    const double forearm_link_412 = wrist_1_link_236 * upper_arm_link_192;
-    const double forearm_link_413 = wrist_1_link_232 * forearm_link_389;
-    const double forearm_link_414 = forearm_link_413 - forearm_link_412;
-    const double forearm_link_415 = forearm_link_411 + forearm_link_414;
-    const double forearm_link_416 = forearm_link_410 + forearm_link_415;
-    const double forearm_link_417 = wrist_1_link_51 + forearm_link_416;
-    const double forearm_link_418 = forearm_link_0 * forearm_link_417;
-    const double forearm_link_419 = -forearm_link_418;
-    const double forearm_link_420 = upper_arm_link_192 + forearm_link_418;
-    const double forearm_link_421 = trig.sin_q[2] * upper_arm_link_195;
-    const double forearm_link_422 = trig.cos_q[2] * upper_arm_link_194;
-    const double forearm_link_423 = forearm_link_421 + forearm_link_422;
-    const double forearm_link_424 = trig.cos_q[2] * upper_arm_link_195;
-    const double forearm_link_425 = trig.sin_q[2] * upper_arm_link_194;
-    const double forearm_link_426 = forearm_link_425 - forearm_link_424;
-    const double forearm_link_427 = (-0.425) * upper_arm_link_207;
-    const double forearm_link_428 = 0.1197 * upper_arm_link_195;
-    const double forearm_link_429 = forearm_link_428 - forearm_link_427;
-    const double forearm_link_430 = 0.425 * upper_arm_link_194;
-    const double forearm_link_431 = (-0.1197) * upper_arm_link_194;
-    const double forearm_link_432 = upper_arm_link_197 + forearm_link_429;
-    const double forearm_link_433 = forearm_link_431 - upper_arm_link_198;
-    const double forearm_link_434 = trig.sin_q[2] * forearm_link_433;
-    const double forearm_link_435 = trig.cos_q[2] * forearm_link_432;
-    const double forearm_link_436 = forearm_link_434 + forearm_link_435;
-    const double forearm_link_437 = trig.cos_q[2] * forearm_link_433;
-    const double forearm_link_438 = trig.sin_q[2] * forearm_link_432;
-    const double forearm_link_439 = forearm_link_437 - forearm_link_438;
-    const double forearm_link_440 = wrist_1_link_223 * forearm_link_439;
-    const double forearm_link_441 = wrist_1_link_222 * forearm_link_430;
-    const double forearm_link_442 = wrist_1_link_239 * forearm_link_436;
-    const double forearm_link_443 = forearm_link_441 + forearm_link_442;
-    const double forearm_link_444 = forearm_link_440 - forearm_link_443;
-    const double forearm_link_445 = wrist_1_link_234 * forearm_link_426;
-    const double forearm_link_446 = wrist_1_link_236 * upper_arm_link_207;
-    const double forearm_link_447 = wrist_1_link_232 * forearm_link_423;
-    const double forearm_link_448 = forearm_link_447 - forearm_link_446;
-    const double forearm_link_449 = forearm_link_445 + forearm_link_448;
-    const double forearm_link_450 = forearm_link_444 + forearm_link_449;
-    const double forearm_link_451 = wrist_1_link_75 + forearm_link_450;
-    const double forearm_link_452 = forearm_link_0 * forearm_link_451;
-    const double forearm_link_453 = -forearm_link_452;
-    const double forearm_link_454 = upper_arm_link_207 + forearm_link_452;
-
-    // ---- link 'wrist_1_link' (3) <- 'forearm_link' (2); joint 'wrist_1_joint': revolute +y; acceleration pass
-    const double wrist_1_link_243 = wrist_1_link_3 * forearm_link_358;
-    const double wrist_1_link_244 = wrist_1_link_1 * forearm_link_355;
-    const double wrist_1_link_245 = wrist_1_link_244 - wrist_1_link_243;
-    const double wrist_1_link_246 = wrist_1_link_1 * forearm_link_358;
-    const double wrist_1_link_247 = wrist_1_link_3 * forearm_link_355;
-    const double wrist_1_link_248 = wrist_1_link_246 + wrist_1_link_247;
-    const double wrist_1_link_249 = (-0.39225) * forearm_link_386;
-    const double wrist_1_link_250 = 0.39225 * forearm_link_355;
-    const double wrist_1_link_251 = wrist_1_link_249 - forearm_link_368;
-    const double wrist_1_link_252 = forearm_link_362 + wrist_1_link_250;
-    const double wrist_1_link_253 = wrist_1_link_3 * forearm_link_371;
-    const double wrist_1_link_254 = wrist_1_link_1 * wrist_1_link_251;
-    const double wrist_1_link_255 = wrist_1_link_254 - wrist_1_link_253;
-    const double wrist_1_link_256 = wrist_1_link_1 * forearm_link_371;
-    const double wrist_1_link_257 = wrist_1_link_3 * wrist_1_link_251;
-    const double wrist_1_link_258 = wrist_1_link_256 + wrist_1_link_257;
-    const double wrist_1_link_259 = wrist_2_link_43 * wrist_1_link_258;
-    const double wrist_1_link_260 = wrist_2_link_42 * wrist_1_link_252;
-    const double wrist_1_link_261 = wrist_2_link_39 * wrist_1_link_255;
-    const double wrist_1_link_262 = wrist_1_link_261 - wrist_1_link_260;
-    const double wrist_1_link_263 = wrist_1_link_259 + wrist_1_link_262;
-    const double wrist_1_link_264 = wrist_2_link_81 * wrist_1_link_248;
-    const double wrist_1_link_265 = wrist_2_link_83 * forearm_link_386;
-    const double wrist_1_link_266 = wrist_2_link_78 * wrist_1_link_245;
-    const double wrist_1_link_267 = wrist_1_link_266 - wrist_1_link_265;
-    const double wrist_1_link_268 = wrist_1_link_264 + wrist_1_link_267;
-    const double wrist_1_link_269 = wrist_1_link_263 + wrist_1_link_268;
-    const double wrist_1_link_270 = 1.0 - wrist_1_link_269;
-    const double wrist_1_link_271 = wrist_1_link_4 * wrist_1_link_270;
-    const double wrist_1_link_272 = wrist_1_link_3 * forearm_link_392;
-    const double wrist_1_link_273 = wrist_1_link_1 * forearm_link_389;
-    const double wrist_1_link_274 = wrist_1_link_273 - wrist_1_link_272;
-    const double wrist_1_link_275 = wrist_1_link_1 * forearm_link_392;
-    const double wrist_1_link_276 = wrist_1_link_3 * forearm_link_389;
-    const double wrist_1_link_277 = wrist_1_link_275 + wrist_1_link_276;
-    const double wrist_1_link_278 = (-0.39225) * forearm_link_420;
-    const double wrist_1_link_279 = 0.39225 * forearm_link_389;
-    const double wrist_1_link_280 = wrist_1_link_278 - forearm_link_402;
-    const double wrist_1_link_281 = forearm_link_396 + wrist_1_link_279;
-    const double wrist_1_link_282 = wrist_1_link_3 * forearm_link_405;
-    const double wrist_1_link_283 = wrist_1_link_1 * wrist_1_link_280;
-    const double wrist_1_link_284 = wrist_1_link_283 - wrist_1_link_282;
-    const double wrist_1_link_285 = wrist_1_link_1 * forearm_link_405;
-    const double wrist_1_link_286 = wrist_1_link_3 * wrist_1_link_280;
-    const double wrist_1_link_287 = wrist_1_link_285 + wrist_1_link_286;
-    const double wrist_1_link_288 = wrist_2_link_43 * wrist_1_link_287;
-    const double wrist_1_link_289 = wrist_2_link_42 * wrist_1_link_281;
-    const double wrist_1_link_290 = wrist_2_link_39 * wrist_1_link_284;
-    const double wrist_1_link_291 = wrist_1_link_290 - wrist_1_link_289;
-    const double wrist_1_link_292 = wrist_1_link_288 + wrist_1_link_291;
-    const double wrist_1_link_293 = wrist_2_link_81 * wrist_1_link_277;
-    const double wrist_1_link_294 = wrist_2_link_83 * forearm_link_420;
-    const double wrist_1_link_295 = wrist_2_link_78 * wrist_1_link_274;
-    const double wrist_1_link_296 = wrist_1_link_295 - wrist_1_link_294;
-    const double wrist_1_link_297 = wrist_1_link_293 + wrist_1_link_296;
-    const double wrist_1_link_298 = wrist_1_link_292 + wrist_1_link_297;
-    const double wrist_1_link_299 = wrist_2_link_4 + wrist_1_link_298;
-    const double wrist_1_link_300 = wrist_1_link_4 * wrist_1_link_299;
-    const double wrist_1_link_301 = -wrist_1_link_300;
-    const double wrist_1_link_302 = forearm_link_420 + wrist_1_link_300;
-    const double wrist_1_link_303 = wrist_1_link_3 * forearm_link_426;
-    const double wrist_1_link_304 = wrist_1_link_1 * forearm_link_423;
-    const double wrist_1_link_305 = wrist_1_link_304 - wrist_1_link_303;
-    const double wrist_1_link_306 = wrist_1_link_1 * forearm_link_426;
-    const double wrist_1_link_307 = wrist_1_link_3 * forearm_link_423;
-    const double wrist_1_link_308 = wrist_1_link_306 + wrist_1_link_307;
-    const double wrist_1_link_309 = (-0.39225) * forearm_link_454;
-    const double wrist_1_link_310 = 0.39225 * forearm_link_423;
-    const double wrist_1_link_311 = wrist_1_link_309 - forearm_link_436;
-    const double wrist_1_link_312 = forearm_link_430 + wrist_1_link_310;
-    const double wrist_1_link_313 = wrist_1_link_3 * forearm_link_439;
-    const double wrist_1_link_314 = wrist_1_link_1 * wrist_1_link_311;
-    const double wrist_1_link_315 = wrist_1_link_314 - wrist_1_link_313;
-    const double wrist_1_link_316 = wrist_1_link_1 * forearm_link_439;
-    const double wrist_1_link_317 = wrist_1_link_3 * wrist_1_link_311;
-    const double wrist_1_link_318 = wrist_1_link_316 + wrist_1_link_317;
-    const double wrist_1_link_319 = wrist_2_link_43 * wrist_1_link_318;
-    const double wrist_1_link_320 = wrist_2_link_42 * wrist_1_link_312;
-    const double wrist_1_link_321 = wrist_2_link_39 * wrist_1_link_315;
-    const double wrist_1_link_322 = wrist_1_link_321 - wrist_1_link_320;
-    const double wrist_1_link_323 = wrist_1_link_319 + wrist_1_link_322;
-    const double wrist_1_link_324 = wrist_2_link_81 * wrist_1_link_308;
-    const double wrist_1_link_325 = wrist_2_link_83 * forearm_link_454;
-    const double wrist_1_link_326 = wrist_2_link_78 * wrist_1_link_305;
-    const double wrist_1_link_327 = wrist_1_link_326 - wrist_1_link_325;
-    const double wrist_1_link_328 = wrist_1_link_324 + wrist_1_link_327;
-    const double wrist_1_link_329 = wrist_1_link_323 + wrist_1_link_328;
-    const double wrist_1_link_330 = trig.cos_q[4] + wrist_1_link_329;
-    const double wrist_1_link_331 = wrist_1_link_4 * wrist_1_link_330;
-    const double wrist_1_link_332 = -wrist_1_link_331;
-    const double wrist_1_link_333 = forearm_link_454 + wrist_1_link_331;
-
-    // ---- link 'wrist_2_link' (4) <- 'wrist_1_link' (3); joint 'wrist_2_joint': revolute +z; acceleration pass
-    const double wrist_2_link_88 = trig.sin_q[4] * wrist_1_link_302;
-    const double wrist_2_link_89 = trig.cos_q[4] * wrist_1_link_274;
-    const double wrist_2_link_90 = wrist_2_link_89 - wrist_2_link_88;
-    const double wrist_2_link_91 = wrist_3_link_30 * wrist_1_link_277;
-    const double wrist_2_link_92 = wrist_3_link_12 * wrist_2_link_90;
-    const double wrist_2_link_93 = wrist_2_link_91 + wrist_2_link_92;
-    const double wrist_2_link_94 = 1.0 - wrist_2_link_93;
-    const double wrist_2_link_95 = wrist_2_link_0 * wrist_2_link_94;
-    const double wrist_2_link_96 = trig.sin_q[4] * wrist_1_link_333;
-    const double wrist_2_link_97 = trig.cos_q[4] * wrist_1_link_305;
-    const double wrist_2_link_98 = wrist_2_link_97 - wrist_2_link_96;
-    const double wrist_2_link_99 = trig.cos_q[4] * wrist_1_link_333;
-    const double wrist_2_link_100 = trig.sin_q[4] * wrist_1_link_305;
-    const double wrist_2_link_101 = wrist_2_link_99 + wrist_2_link_100;
-    const double wrist_2_link_102 = wrist_3_link_30 * wrist_1_link_308;
-    const double wrist_2_link_103 = wrist_3_link_12 * wrist_2_link_98;
-    const double wrist_2_link_104 = wrist_2_link_102 + wrist_2_link_103;
-    const double wrist_2_link_105 = wrist_2_link_0 * wrist_2_link_104;
-    const double wrist_2_link_106 = -wrist_2_link_105;
-
-    // ---- link 'wrist_3_link' (5) <- 'wrist_2_link' (4); joint 'wrist_3_joint': revolute +y; acceleration pass
-    const double wrist_3_link_33 = (-0.0171364731454) * wrist_2_link_101;
-    const double wrist_3_link_34 = 1.0 - wrist_3_link_33;
-    const double wrist_3_link_35 = 58.355064750790525 * wrist_3_link_34;
+    // ---- factorisation of M
+    const double t_0 = wrist_1_link_5 * 58.355064750790525;
+    const double t_1 = wrist_1_link_5 * t_0;
+    const double t_2 = wrist_2_link_21 - t_1;
+    const double t_3 = forearm_link_9 - t_1;
+    const double t_4 = upper_arm_link_32 - t_1;
+    const double t_5 = shoulder_link_2 * t_0;
+    const double t_6 = shoulder_link_13 + t_5;
+    const double t_7 = wrist_1_link_45 - t_1;
+    const double t_8 = upper_arm_link_37 - t_1;
+    const double t_9 = shoulder_link_21 + t_5;
+    const double t_10 = forearm_link_61 - t_1;
+    const double t_11 = upper_arm_link_55 + t_5;
+    const double t_12 = shoulder_link_2 * (-58.355064750790525);
+    const double t_13 = shoulder_link_2 * t_12;
+    const double t_14 = upper_arm_link_56 + t_13;
+    const double t_15 = 1.0 / wrist_3_link_17;
+    const double t_16 = wrist_2_link_5 * t_15;
+    const double t_17 = wrist_2_link_5 * t_16;
+    const double t_18 = t_2 - t_17;
+    const double t_19 = t_3 - t_17;
+    const double t_20 = t_4 - t_17;
+    const double t_21 = shoulder_link_5 * t_16;
+    const double t_22 = t_6 - t_21;
+    const double t_23 = t_7 - t_17;
+    const double t_24 = t_8 - t_17;
+    const double t_25 = t_9 - t_21;
+    const double t_26 = t_10 - t_17;
+    const double t_27 = t_11 - t_21;
+    const double t_28 = shoulder_link_5 * t_15;
+    const double t_29 = shoulder_link_5 * t_28;
+    const double t_30 = t_14 - t_29;
+    const double t_31 = 1.0 / t_18;
+    const double t_32 = t_19 * t_31;
+    const double t_33 = t_19 * t_32;
+    const double t_34 = t_23 - t_33;
+    const double t_35 = t_20 * t_32;
+    const double t_36 = t_24 - t_35;
+    const double t_37 = t_22 * t_32;
+    const double t_38 = t_25 - t_37;
+    const double t_39 = t_20 * t_31;
+    const double t_40 = t_20 * t_39;
+    const double t_41 = t_26 - t_40;
+    const double t_42 = t_22 * t_39;
+    const double t_43 = t_27 - t_42;
+    const double t_44 = t_22 * t_31;
+    const double t_45 = t_22 * t_44;
+    const double t_46 = t_30 - t_45;
+    const double t_47 = 1.0 / t_34;
+    const double t_48 = t_36 * t_47;
+    const double t_49 = t_36 * t_48;
+    const double t_50 = t_41 - t_49;
+    const double t_51 = t_38 * t_48;
+    const double t_52 = t_43 - t_51;
+    const double t_53 = t_38 * t_47;
+    const double t_54 = t_38 * t_53;
+    const double t_55 = t_46 - t_54;
+    const double t_56 = 1.0 / t_50;
+    const double t_57 = t_52 * t_56;
+    const double t_58 = t_52 * t_57;
+    const double t_59 = t_55 - t_58;
+    const double t_60 = 1.0 / t_59;
+    const double t_61 = t_48 * t_57;
+    const double t_62 = t_61 - t_53;
+    const double t_63 = t_32 * t_48;
+    const double t_64 = t_63 - t_39;
+    const double t_65 = t_32 * t_62;
+    const double t_66 = t_39 * t_57;
+    const double t_67 = t_66 - t_65;
+    const double t_68 = t_67 - t_44;
+    const double t_69 = t_16 * t_32;
+    const double t_70 = t_69 - t_16;
+    const double t_71 = t_16 * t_64;
+    const double t_72 = t_16 * t_48;
+    const double t_73 = t_72 - t_71;
+    const double t_74 = t_73 - t_16;
+    const double t_75 = t_16 * t_68;
+    const double t_76 = t_16 * t_62;
+    const double t_77 = t_75 + t_76;
+    const double t_78 = t_16 * t_57;
+    const double t_79 = t_78 - t_77;
+    const double t_80 = t_79 - t_28;
+    const double t_81 = t_0 * t_32;
+    const double t_82 = t_81 - t_0;
+    const double t_83 = t_0 * t_64;
+    const double t_84 = t_0 * t_48;
+    const double t_85 = t_84 - t_83;
+    const double t_86 = t_85 - t_0;
+    const double t_87 = t_0 * t_68;
+    const double t_88 = t_0 * t_62;
+    const double t_89 = t_87 + t_88;
+    const double t_90 = t_0 * t_57;
+    const double t_91 = t_90 - t_89;
+    const double t_92 = t_91 - t_12;
+    const double t_93 = t_57 * t_60;
+    const double t_94 = -t_93;
+    const double t_95 = t_57 * t_93;
+    const double t_96 = t_56 + t_95;
+    const double t_97 = t_60 * t_62;
+    const double t_98 = t_48 * t_56;
+    const double t_99 = t_57 * t_97;
+    const double t_100 = t_98 + t_99;
+    const double t_101 = -t_100;
+    const double t_102 = t_48 * t_98;
+    const double t_103 = t_47 + t_102;
+    const double t_104 = t_62 * t_97;
+    const double t_105 = t_103 + t_104;
+    const double t_106 = t_60 * t_68;
+    const double t_107 = t_56 * t_64;
+    const double t_108 = t_57 * t_106;
+    const double t_109 = t_107 - t_108;
+    const double t_110 = t_32 * t_47;
+    const double t_111 = t_48 * t_107;
+    const double t_112 = t_110 + t_111;
+    const double t_113 = t_62 * t_106;
+    const double t_114 = t_113 - t_112;
+    const double t_115 = t_32 * t_110;
+    const double t_116 = t_31 + t_115;
+    const double t_117 = t_64 * t_107;
+    const double t_118 = t_116 + t_117;
+    const double t_119 = t_68 * t_106;
+    const double t_120 = t_118 + t_119;
+    const double t_121 = t_60 * t_80;
+    const double t_122 = t_56 * t_74;
+    const double t_123 = t_57 * t_121;
+    const double t_124 = t_122 - t_123;
+    const double t_125 = t_47 * t_70;
+    const double t_126 = t_48 * t_122;
+    const double t_127 = t_125 - t_126;
+    const double t_128 = t_62 * t_121;
+    const double t_129 = t_127 + t_128;
+    const double t_130 = t_16 * t_31;
+    const double t_131 = t_32 * t_125;
+    const double t_132 = t_130 + t_131;
+    const double t_133 = t_64 * t_122;
+    const double t_134 = t_133 - t_132;
+    const double t_135 = t_68 * t_121;
+    const double t_136 = t_134 + t_135;
+    const double t_137 = t_16 * t_130;
+    const double t_138 = t_15 + t_137;
+    const double t_139 = t_70 * t_125;
+    const double t_140 = t_138 + t_139;
+    const double t_141 = t_74 * t_122;
+    const double t_142 = t_140 + t_141;
+    const double t_143 = t_80 * t_121;
+    const double t_144 = t_142 + t_143;
+    const double t_145 = t_60 * t_92;
+    const double t_146 = t_56 * t_86;
+    const double t_147 = t_57 * t_145;
+    const double t_148 = t_146 - t_147;
+    const double t_149 = t_47 * t_82;
+    const double t_150 = t_48 * t_146;
+    const double t_151 = t_149 - t_150;
+    const double t_152 = t_62 * t_145;
+    const double t_153 = t_151 + t_152;
+    const double t_154 = t_0 * t_31;
+    const double t_155 = t_32 * t_149;
+    const double t_156 = t_154 + t_155;
+    const double t_157 = t_64 * t_146;
+    const double t_158 = t_157 - t_156;
+    const double t_159 = t_68 * t_145;
+    const double t_160 = t_158 + t_159;
+    const double t_161 = t_16 * t_154;
+    const double t_162 = t_70 * t_149;
+    const double t_163 = t_161 + t_162;
+    const double t_164 = t_74 * t_146;
+    const double t_165 = t_163 + t_164;
+    const double t_166 = t_80 * t_145;
+    const double t_167 = t_165 + t_166;
+    const double t_168 = t_0 * t_154;
+    const double t_169 = 58.355064750790525 + t_168;
+    const double t_170 = t_82 * t_149;
+    const double t_171 = t_169 + t_170;
+    const double t_172 = t_86 * t_146;
+    const double t_173 = t_171 + t_172;
+    const double t_174 = t_92 * t_145;
+    const double t_175 = t_173 + t_174;
 
     // ---- outputs
-    Minv[0] = shoulder_link_0;
-    Minv[1] = shoulder_link_2;
-    Minv[2] = shoulder_link_4;
-    Minv[3] = shoulder_link_6;
-    Minv[4] = shoulder_link_8;
-    Minv[5] = shoulder_link_10;
-    Minv[6] = shoulder_link_2;
-    Minv[7] = upper_arm_link_148;
-    Minv[8] = upper_arm_link_163;
-    Minv[9] = upper_arm_link_178;
-    Minv[10] = upper_arm_link_193;
-    Minv[11] = upper_arm_link_208;
-    Minv[12] = shoulder_link_4;
-    Minv[13] = upper_arm_link_163;
-    Minv[14] = forearm_link_352;
-    Minv[15] = forearm_link_385;
-    Minv[16] = forearm_link_419;
-    Minv[17] = forearm_link_453;
-    Minv[18] = shoulder_link_6;
-    Minv[19] = upper_arm_link_178;
-    Minv[20] = forearm_link_385;
-    Minv[21] = wrist_1_link_271;
-    Minv[22] = wrist_1_link_301;
-    Minv[23] = wrist_1_link_332;
-    Minv[24] = shoulder_link_8;
-    Minv[25] = upper_arm_link_193;
-    Minv[26] = forearm_link_419;
-    Minv[27] = wrist_1_link_301;
-    Minv[28] = wrist_2_link_95;
-    Minv[29] = wrist_2_link_106;
-    Minv[30] = shoulder_link_10;
-    Minv[31] = upper_arm_link_208;
-    Minv[32] = forearm_link_453;
-    Minv[33] = wrist_1_link_332;
-    Minv[34] = wrist_2_link_106;
-    Minv[35] = wrist_3_link_35;
+    Minv[0] = t_60;
+    Minv[1] = t_94;
+    Minv[2] = t_97;
+    Minv[3] = t_106;
+    Minv[4] = t_121;
+    Minv[5] = t_145;
+    Minv[6] = t_94;
+    Minv[7] = t_96;
+    Minv[8] = t_101;
+    Minv[9] = t_109;
+    Minv[10] = t_124;
+    Minv[11] = t_148;
+    Minv[12] = t_97;
+    Minv[13] = t_101;
+    Minv[14] = t_105;
+    Minv[15] = t_114;
+    Minv[16] = t_129;
+    Minv[17] = t_153;
+    Minv[18] = t_106;
+    Minv[19] = t_109;
+    Minv[20] = t_114;
+    Minv[21] = t_120;
+    Minv[22] = t_136;
+    Minv[23] = t_160;
+    Minv[24] = t_121;
+    Minv[25] = t_124;
+    Minv[26] = t_129;
+    Minv[27] = t_136;
+    Minv[28] = t_144;
+    Minv[29] = t_167;
+    Minv[30] = t_145;
+    Minv[31] = t_148;
+    Minv[32] = t_153;
+    Minv[33] = t_160;
+    Minv[34] = t_167;
+    Minv[35] = t_175;
 }
 
 void minv(const double q[nq], double Minv[nv * nv]) noexcept
@@ -3891,6 +3163,7 @@ void minv(const double q[nq], double Minv[nv * nv]) noexcept
 
 // Derivatives of inverse dynamics: d tau / dq and d tau / dv at (q, v, a) (d tau / da is M).
 // Operations: add 1028, mul 1156, div 0, neg 5, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void rnea_derivatives_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                            const double a[nv], double dtau_dq[nv * nv],
                            double dtau_dv[nv * nv]) noexcept
@@ -6202,6 +5475,7 @@ void rnea_derivatives(const double q[nq], const double v[nv], const double a[nv]
 
 // Derivatives of forward dynamics: d qdd / dq, d qdd / dv and d qdd / d tau = M^-1 at (q, v, tau).
 // Operations: add 1615, mul 1846, div 5, neg 68, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void aba_derivatives_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                           const double tau[nv], double dqdd_dq[nv * nv], double dqdd_dv[nv * nv],
                           double Minv[nv * nv]) noexcept
@@ -9959,6 +9233,7 @@ void aba_derivatives(const double q[nq], const double v[nv], const double tau[nv
 
 // Placements of the frames: rotation R and origin p in base coordinates.
 // Operations: add 54, mul 81, div 0, neg 1, sin 6, cos 6 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void frame_placements_trig(const double q[nq], const JointTrig& trig, double R[nframes * 9],
                            double p[nframes * 3]) noexcept
 {
@@ -10152,6 +9427,7 @@ void frame_placements(const double q[nq], double R[nframes * 9], double p[nframe
 
 // Jacobians of the frames, in base axes at each frame's origin.
 // Operations: add 65, mul 95, div 0, neg 3, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void frame_jacobians_trig(const double q[nq], const JointTrig& trig,
                           double J[nframes * 6 * nv]) noexcept
 {
@@ -10433,6 +9709,7 @@ void frame_jacobians(const double q[nq], double J[nframes * 6 * nv]) noexcept
 
 // Jacobians of the frames, in each frame's own axes.
 // Operations: add 181, mul 271, div 0, neg 1, sin 6, cos 6 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void frame_jacobians_local_trig(const double q[nq], const JointTrig& trig,
                                 double J_local[nframes * 6 * nv]) noexcept
 {
@@ -11015,6 +10292,7 @@ void frame_jacobians_local(const double q[nq], double J_local[nframes * 6 * nv])
 
 // Bias accelerations Jdot v of the frames at qdd = 0, in base axes.
 // Operations: add 145, mul 177, div 0, neg 0, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void frame_accelerations_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                               double Jdot_v[nframes * 6]) noexcept
 {
@@ -11382,6 +10660,7 @@ void frame_accelerations(const double q[nq], const double v[nv],
 
 // Bias accelerations Jdot v of the frames at qdd = 0, in each frame's own axes.
 // Operations: add 189, mul 239, div 0, neg 0, sin 6, cos 6 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void frame_accelerations_local_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                                     double Jdot_v_local[nframes * 6]) noexcept
 {
@@ -11854,6 +11133,7 @@ void frame_accelerations_local(const double q[nq], const double v[nv],
 
 // Centre of mass c(q) and its Jacobian.
 // Operations: add 30, mul 67, div 0, neg 0, sin 4, cos 4 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void com_trig(const double q[nq], const JointTrig& trig, double c[3], double Jc[3 * nv]) noexcept
 {
     static_cast<void>(q);  // read only through trig
@@ -12011,6 +11291,7 @@ void com(const double q[nq], double c[3], double Jc[3 * nv]) noexcept
 
 // Centroidal momentum matrix Ag(q) and momentum hg = Ag v (Orin, Goswami & Lee 2013).
 // Operations: add 191, mul 242, div 0, neg 2, sin 6, cos 6 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void centroidal_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                      double Ag[6 * nv], double hg[6]) noexcept
 {
@@ -12537,6 +11818,7 @@ void centroidal(const double q[nq], const double v[nv], double Ag[6 * nv], doubl
 
 // Inertial-parameter regressor Y(q, v, a): tau = Y pi + armature a, linear in the bodies' standard parameters pi.
 // Operations: add 570, mul 869, div 0, neg 30, sin 5, cos 5 (sin and cos in joint_trig).
+DYNGEN_DISPATCH
 void regressor_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                     const double a[nv], double Y[nbodies * 10 * nv]) noexcept
 {
@@ -14247,6 +13529,7 @@ void regressor(const double q[nq], const double v[nv], const double a[nv],
 
 // The configuration reached from q along the tangent vector v in unit time: q (+) v (Pinocchio's integrate).
 // Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 (it reads no joint angle).
+DYNGEN_DISPATCH
 void integrate_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                     double q_plus[nq]) noexcept
 {
@@ -14281,13 +13564,13 @@ void integrate_trig(const double q[nq], const JointTrig& trig, const double v[nv
 
 void integrate(const double q[nq], const double v[nv], double q_plus[nq]) noexcept
 {
-    JointTrig trig;
-    trig = JointTrig{};  // no angle is read
+    static const JointTrig trig{};  // no angle is read
     integrate_trig(q, trig, v, q_plus);
 }
 
 // The tangent vector from q to q_target, with integrate(q, delta) = q_target (Pinocchio's difference).
 // Operations: add 6, mul 0, div 0, neg 0, sin 0, cos 0 (it reads no joint angle).
+DYNGEN_DISPATCH
 void difference_trig(const double q[nq], const JointTrig& trig, const double q_target[nq],
                      double delta[nv]) noexcept
 {
@@ -14322,13 +13605,13 @@ void difference_trig(const double q[nq], const JointTrig& trig, const double q_t
 
 void difference(const double q[nq], const double q_target[nq], double delta[nv]) noexcept
 {
-    JointTrig trig;
-    trig = JointTrig{};  // no angle is read
+    static const JointTrig trig{};  // no angle is read
     difference_trig(q, trig, q_target, delta);
 }
 
 // Jacobians of integrate(q, v) by q and by v, in tangent coordinates (Pinocchio's dIntegrate).
 // Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 (it reads no joint angle).
+DYNGEN_DISPATCH
 void integrate_derivatives_trig(const double q[nq], const JointTrig& trig, const double v[nv],
                                 double dintegrate_dq[nv * nv],
                                 double dintegrate_dv[nv * nv]) noexcept
@@ -14359,13 +13642,13 @@ void integrate_derivatives_trig(const double q[nq], const JointTrig& trig, const
 void integrate_derivatives(const double q[nq], const double v[nv], double dintegrate_dq[nv * nv],
                            double dintegrate_dv[nv * nv]) noexcept
 {
-    JointTrig trig;
-    trig = JointTrig{};  // no angle is read
+    static const JointTrig trig{};  // no angle is read
     integrate_derivatives_trig(q, trig, v, dintegrate_dq, dintegrate_dv);
 }
 
 // Jacobians of difference(q, q_target) by q and by q_target, in tangent coordinates (Pinocchio's dDifference).
 // Operations: add 0, mul 0, div 0, neg 0, sin 0, cos 0 (it reads no joint angle).
+DYNGEN_DISPATCH
 void difference_derivatives_trig(const double q[nq], const JointTrig& trig,
                                  const double q_target[nq], double ddifference_dq[nv * nv],
                                  double ddifference_dq_target[nv * nv]) noexcept
@@ -14397,8 +13680,7 @@ void difference_derivatives(const double q[nq], const double q_target[nq],
                             double ddifference_dq[nv * nv],
                             double ddifference_dq_target[nv * nv]) noexcept
 {
-    JointTrig trig;
-    trig = JointTrig{};  // no angle is read
+    static const JointTrig trig{};  // no angle is read
     difference_derivatives_trig(q, trig, q_target, ddifference_dq, ddifference_dq_target);
 }
 

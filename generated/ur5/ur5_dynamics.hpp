@@ -24,9 +24,9 @@
 //     runtime:   add 702, mul 858, div 0, neg 3, sin 6, cos 6
 //     0 of 10 link sections in 0 shared functions
 //   minv
-//     generated: add 459, mul 673, div 5, neg 15, sin 5, cos 5
-//     runtime:   add 2223, mul 2538, div 6, neg 18, sin 6, cos 6
-//     0 of 14 link sections in 0 shared functions
+//     generated: add 187, mul 212, div 5, neg 2, sin 5, cos 5
+//     runtime:   add 927, mul 1235, div 6, neg 0, sin 6, cos 6
+//     0 of 20 link sections in 0 shared functions
 //   rnea_derivatives
 //     generated: add 1028, mul 1156, div 0, neg 5, sin 5, cos 5
 //     runtime:   add 4939, mul 5754, div 0, neg 3, sin 6, cos 6
@@ -197,7 +197,7 @@ void gravity_trig(const double q[nq], const JointTrig& trig, double g[nv]) noexc
 void nle(const double q[nq], const double v[nv], double h[nv]) noexcept;
 void nle_trig(const double q[nq], const JointTrig& trig, const double v[nv], double h[nv]) noexcept;
 
-/// Inverse of the mass matrix M(q)^-1 (articulated-body recursion, no factorisation).
+/// Inverse of the mass matrix M(q)^-1 (CRBA, then L^T D L along the tree's branches).
 void minv(const double q[nq], double Minv[nv * nv]) noexcept;
 void minv_trig(const double q[nq], const JointTrig& trig, double Minv[nv * nv]) noexcept;
 

@@ -40,6 +40,7 @@ void ur5_joint_trig(const float q[UR5_NQ], ur5_JointTrig* trig)
 
 // Inverse dynamics (recursive Newton-Euler): tau = M(q) a + C(q, v) v + g(q).
 // Operations: add 174, mul 251, div 0, neg 0, sin 5, cos 5 (sin and cos in ur5_joint_trig).
+DYNGEN_DISPATCH
 void ur5_rnea_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float v[UR5_NV],
                    const float a[UR5_NV], float tau[UR5_NV])
 {
@@ -512,6 +513,7 @@ void ur5_rnea(const float q[UR5_NQ], const float v[UR5_NV], const float a[UR5_NV
 
 // Mass matrix M(q) (composite rigid bodies).
 // Operations: add 108, mul 122, div 0, neg 1, sin 5, cos 5 (sin and cos in ur5_joint_trig).
+DYNGEN_DISPATCH
 void ur5_crba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, float M[UR5_NV * UR5_NV])
 {
     (void)q;  // read only through trig
@@ -834,6 +836,7 @@ void ur5_crba(const float q[UR5_NQ], float M[UR5_NV * UR5_NV])
 
 // Forward dynamics (articulated bodies): qdd = M(q)^-1 (tau - C(q, v) v - g(q)).
 // Operations: add 508, mul 688, div 5, neg 0, sin 5, cos 5 (sin and cos in ur5_joint_trig).
+DYNGEN_DISPATCH
 void ur5_aba_trig(const float q[UR5_NQ], const ur5_JointTrig* trig, const float v[UR5_NV],
                   const float tau[UR5_NV], float qdd[UR5_NV])
 {

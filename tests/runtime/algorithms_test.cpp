@@ -280,29 +280,24 @@ TEST_P(Algorithms, MinvInvertsCrbaAndMatchesAba) {
   EXPECT_LE(worst_aba, qdd_bound_neps);
 }
 
-TEST_P(Algorithms, LtdlFactorsCrbaWithAbasPivotsAndInvertsLikeMinv) {
+TEST_P(Algorithms, LtdlFactorsCrbaWithAbasPivots) {
   // factor_ltdl's D against ABA's D = S^T IA S of each one-column joint (the same Schur
-  // complements, computed from M here and from articulated inertias there), and ltdl_inverse's
-  // M^-1 against minv's ABA-based recursion: errors in units of n eps cond(M)
+  // complements, computed from M here and from articulated inertias there): errors in units of
+  // n eps cond(M). ltdl_inverse is minv's, which MinvInvertsCrbaAndMatchesAba checks.
   const Model<double> model = GetParam().make();
   Dynamics<double> dyn(model);
   Workspace<double> ws(model);
   test::Random rng(GetParam().seed);
   const int n = model.nv;
   const std::size_t nn = static_cast<std::size_t>(n) * n;
-  std::vector<double> H(nn), Dinv(n), Linv(nn), Minv(nn), qdd(n);
-  double worst_pivot = 0, worst_minv = 0;
+  std::vector<double> H(nn), Dinv(n), qdd(n);
+  double worst_pivot = 0;
   for (int k = 0; k < states_per_model; ++k) {
     const Sample x = sample(dyn, rng);
     const std::span<const double> q(x.q.data(), std::size_t(x.q.size()));
     crba<double>(model, ws, q, H);
     factor_ltdl<double>(n, ws.column_parent.data(), H, Dinv);
-    ltdl_inverse<double>(n, ws.column_parent.data(), H, Dinv, Linv, Minv);
-    const Matrix inverse = test::to_eigen(Minv, n);
-    EXPECT_EQ(max_abs(inverse - inverse.transpose()), 0.0);
     const double cond = x.lambda_max / x.lambda_min;
-    worst_minv = worse(worst_minv, max_abs(inverse - dyn.minv(x.q)) /
-                                       (n * eps * cond * max_abs(inverse)));
     aba<double>(model, ws, q, {x.qd.data(), std::size_t(n)}, {x.tau.data(), std::size_t(n)},
                 qdd);
     for (int i = 0; i < model.nbodies; ++i) {
@@ -312,9 +307,7 @@ TEST_P(Algorithms, LtdlFactorsCrbaWithAbasPivotsAndInvertsLikeMinv) {
     }
   }
   report("LTDL pivots vs ABA's D / (n eps cond(M) |D|)", worst_pivot);
-  report("LTDL M^-1 vs minv / (n eps cond(M) max|Minv|)", worst_minv);
   EXPECT_LE(worst_pivot, qdd_bound_neps);
-  EXPECT_LE(worst_minv, qdd_bound_neps);
 }
 
 TEST_P(Algorithms, MassMatrixIsSymmetricPositiveDefinite) {

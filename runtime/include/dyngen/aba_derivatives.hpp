@@ -4,9 +4,9 @@
 //
 // M^-1 comes from CRBA's M factorised as L^T D L (RBDA sec. 6.5), which keeps the branches'
 // zeros, and qdd = M^-1 (tau - h) with h = nle(q, v): traced, that takes fewer operations on
-// every test robot than ABA plus minv's recursion, which carry articulated inertias (21
-// numbers a body) through every joint where CRBA carries rigid ones (10) (docs/performance.md,
-// "M^-1 from CRBA's factorised M").
+// every test robot than ABA plus the articulated-body recursion for M^-1, which carry
+// articulated inertias (21 numbers a body) through every joint where CRBA carries rigid ones (10)
+// (docs/performance.md, "M^-1 from CRBA's factorised M"). minv takes the same path.
 #pragma once
 
 #include <cstddef>

@@ -249,7 +249,8 @@ const std::vector<AlgorithmSpec<S>>& algorithm_table() {
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) {
          nle<S>(m, ws, in[0], in[1], out[0]);
        }},
-      {"minv", "Inverse of the mass matrix M(q)^-1 (articulated-body recursion, no factorisation).",
+      {"minv",
+       "Inverse of the mass matrix M(q)^-1 (CRBA, then L^T D L along the tree's branches).",
        {q_array}, {Minv_array},
        Growth::Dense, true,
        [](const Model<S>& m, Workspace<S>& ws, In in, Out out) { minv<S>(m, ws, in[0], out[0]); }},

@@ -83,11 +83,6 @@ struct Workspace {
     // primary's: M is factorised as dense
     if (!model.mimic.empty())
       for (int c = 0; c < model.nv; ++c) column_parent[c] = c - 1;
-    const std::size_t columns =
-        static_cast<std::size_t>(model.nbodies) * static_cast<std::size_t>(model.nv);
-    pA_columns.resize(columns);
-    a_columns.resize(columns);
-    u_columns.resize(columns);
     dtau_dq.resize(static_cast<std::size_t>(model.nv) * static_cast<std::size_t>(model.nv));
     dtau_dv.resize(dtau_dq.size());
     H.resize(dtau_dq.size());
@@ -213,15 +208,12 @@ struct Workspace {
   std::vector<S> pair_X;                       // [12 nbodies]
   std::vector<S> pair_motion, pair_force;      // [24 nv]
   std::vector<int> column_body, first_column;  // [nv], [nbodies + 1]
-  // minv: per body and column of M^-1 (body * nv + column), pA, a and u of the unit torque
+  // the end of the columns of body i's subtree, which start at v_index[i]
   std::vector<int> subtree_end;          // [nbodies]
   // 1 where body i's column is shared with a mimic joint (its own, or its primary's): the
   // algorithms add its entries instead of writing them
   std::vector<char> shares_column;       // [nbodies]
-  std::vector<Force<S>> pA_columns;      // [nbodies * nv] if nv <= max_matrix_nv
-  std::vector<Motion<S>> a_columns;      // [nbodies * nv] if nv <= max_matrix_nv
-  std::vector<S> u_columns;              // [nbodies * nv] if nv <= max_matrix_nv
-  // aba_derivatives: M factorised as L^T D L (crba.hpp), each column's parent column, 1 / D
+  // minv and aba_derivatives: M factorised as L^T D L (crba.hpp), each column's parent column, 1 / D
   // and L^-1; h = nle, then tau - h; qdd = M^-1 (tau - h) and the derivatives of RNEA there
   std::vector<int> column_parent;        // [nv] if nv <= max_matrix_nv
   std::vector<S> H, Linv;                // [nv * nv] if nv <= max_matrix_nv
