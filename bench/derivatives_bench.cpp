@@ -1,6 +1,7 @@
 // dyngen_derivatives_bench (bench/README.md): the generated derivatives beside the generated
 // values they differentiate, finite differences of the generated ABA, the runtime's derivatives,
-// and minv beside CRBA followed by an LDL^T inverse, for the packages of bench/CMakeLists.txt's
+// minv beside CRBA followed by an LDL^T inverse, and rnea_derivatives followed by crba (what
+// Pinocchio's computeRNEADerivatives returns: dtau/da = M too), for the packages of bench/CMakeLists.txt's
 // derivative_package(). ns per call on seeded random states that change every call; each
 // generated function is first checked against the runtime. First it prints each function's
 // operations (add, mul, div, neg; sin and cos are in joint_trig), generated and runtime, as
@@ -131,7 +132,7 @@ void crba_ldlt_inverse(Fixture& f, const numerics::State& s) {
 
 /// The operation counts of the generated functions and of the runtime's, as a Markdown table.
 void print_operation_counts(const std::vector<std::unique_ptr<Fixture>>& fixtures) {
-  const char* functions[] = {"rnea", "aba", "gravity", "nle", "minv", "rnea_derivatives",
+  const char* functions[] = {"rnea", "crba", "aba", "gravity", "nle", "minv", "rnea_derivatives",
                              "aba_derivatives"};
   std::printf("operations per call, generated / runtime (add, mul, div, neg):\n\n| robot |");
   for (const char* a : functions) std::printf(" %s |", a);
@@ -168,6 +169,10 @@ const std::map<std::string, Measure>& measures() {
       {"crba_ldlt_inverse", crba_ldlt_inverse},
       {"rnea_derivatives", [](Fixture& f, const numerics::State& s) {
          f.p->rnea_derivatives(s.q.data(), s.qd.data(), s.qdd.data(), f.a.data(), f.b.data());
+       }},
+      {"rnea_derivatives_with_M", [](Fixture& f, const numerics::State& s) {
+         f.p->rnea_derivatives(s.q.data(), s.qd.data(), s.qdd.data(), f.a.data(), f.b.data());
+         f.p->crba(s.q.data(), f.c.data());
        }},
       {"aba_derivatives", [](Fixture& f, const numerics::State& s) {
          f.p->aba_derivatives(s.q.data(), s.qd.data(), s.tau.data(), f.a.data(), f.b.data(),
