@@ -22,7 +22,8 @@ struct Toolchain {
 };
 
 /// host: cc, c++ and nm (or $CC, $CXX, split into words: "ccache g++"), the baseline instruction
-/// set (DYNGEN_NO_DISPATCH), no library routine expected; a Cortex-M: arm-none-eabi-gcc with its -mcpu, -mfpu and -mfloat-abi.
+/// set (DYNGEN_NO_DISPATCH), no library routine expected; a Cortex-M: arm-none-eabi-gcc with its
+/// -mcpu, -mfpu and -mfloat-abi.
 Toolchain toolchain(const std::string& target);
 
 /// The flags code in dialect's language is compiled with for the toolchain's processor: its
