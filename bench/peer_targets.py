@@ -18,34 +18,8 @@ import json
 import os
 import sys
 
-# (function, bench package, issue's robot, Pin+CG ns, Pinocchio ns, source)
-REFERENCE = [
-    ("rnea_derivatives_with_M", "ur5 fixed", "ur5", 1072, 1999, 45),
-    ("rnea_derivatives_with_M", "iiwa14 fixed", "iiwa14", 1460, 2325, 45),
-    ("rnea_derivatives_with_M", "solo12 floating", "solo12 floating", 4423, 5031, 45),
-    ("rnea_derivatives_with_M", "anymal_c floating", "quadruped, rotated frames", None, None, 45),
-    ("rnea_derivatives_with_M", "atlas floating", "atlas floating", 13061, 12575, 45),
-    ("aba_derivatives", "ur5 fixed", "ur5", 1461, 2605, 45),
-    ("aba_derivatives", "iiwa14 fixed", "iiwa14", 2001, 3163, 45),
-    ("aba_derivatives", "solo12 floating", "solo12 floating", 7510, 8226, 45),
-    ("aba_derivatives", "anymal_c floating", "quadruped, rotated frames", None, None, 45),
-    ("aba_derivatives", "atlas floating", "atlas floating", 65983, 24828, 45),
-    ("minv", "ur5 fixed", "ur5", 222, 861, 45),
-    ("minv", "iiwa14 fixed", "iiwa14", None, None, 45),
-    ("minv", "solo12 floating", "solo12 floating", None, None, 45),
-    ("minv", "anymal_c floating", "quadruped, rotated frames", None, None, 45),
-    ("minv", "atlas floating", "atlas floating", 5574, 6755, 45),
-    ("rnea", "iiwa14 fixed", "iiwa14", 150, 670, 45),
-    ("rnea", "panda fixed", "panda", 299, 1064, 16),
-    ("crba", "iiwa14 fixed", "iiwa14", 221, 466, 16),
-    ("crba", "panda fixed", "panda", 310, 591, 16),
-    ("crba", "panda fixed", "7-DoF arm with a 3-finger hand", 587, 660, 16),
-    ("aba", "iiwa14 fixed", "iiwa14", 636, 1435, 45),
-    ("aba", "panda fixed", "panda", 866, 1843, 45),
-    ("aba", "panda fixed", "7-DoF arm with a 3-finger hand", 1050, 2016, 45),
-]
 # issue 45's own table: (function, bench package, issue's robot, dyngen ns at 96a8a48, Pin+CG ns,
-# Pinocchio ns), given again with this run's dyngen column
+# Pinocchio ns), given again with this run's dyngen column; its figures are the targets' too
 ISSUE_TABLE = [
     ("rnea_derivatives", "ur5 fixed", "ur5", 436, 1072, 1999),
     ("rnea_derivatives", "iiwa14 fixed", "iiwa14", 928, 1460, 2325),
@@ -63,6 +37,41 @@ ISSUE_TABLE = [
     ("rnea", "iiwa14 fixed", "iiwa14", 104, 150, 670),
     ("rnea", "atlas fixed", "atlas", 590, 930, 3170),
 ]
+# issue 16's figures (Pin+CG ns, Pinocchio ns) for target rows that issue 45's table lacks
+ISSUE_16 = {
+    ("rnea", "panda"): (299, 1064),
+    ("crba", "iiwa14"): (221, 466),
+    ("crba", "panda"): (310, 591),
+    ("crba", "7-DoF arm with a 3-finger hand"): (587, 660),
+}
+QUADRUPED = "quadruped, rotated frames"
+# the target rows: (function, bench package, issue's robot)
+TARGET_ROWS = (
+    [(f, p, r) for f in ("rnea_derivatives_with_M", "aba_derivatives", "minv")
+     for p, r in (("ur5 fixed", "ur5"), ("iiwa14 fixed", "iiwa14"),
+                  ("solo12 floating", "solo12 floating"), ("anymal_c floating", QUADRUPED),
+                  ("atlas floating", "atlas floating"))] +
+    [("rnea", "iiwa14 fixed", "iiwa14"), ("rnea", "panda fixed", "panda"),
+     ("crba", "iiwa14 fixed", "iiwa14"), ("crba", "panda fixed", "panda"),
+     ("crba", "panda fixed", "7-DoF arm with a 3-finger hand"),
+     ("aba", "iiwa14 fixed", "iiwa14"), ("aba", "panda fixed", "panda"),
+     ("aba", "panda fixed", "7-DoF arm with a 3-finger hand")])
+
+
+def reference(function, package, robot):
+    """(Pin+CG ns, Pinocchio ns, source issue) of a target row: issue 45's table (its
+    rnea_derivatives for rnea_derivatives_with_M), else issue 16's, else no figure."""
+    name = function.removesuffix("_with_M")
+    for f, p, r, _, codegen, generic in ISSUE_TABLE:
+        if (f, p, r) == (name, package, robot):
+            return codegen, generic, 45
+    if (function, robot) in ISSUE_16:
+        return (*ISSUE_16[function, robot], 16)
+    return None, None, 45
+
+
+# (function, bench package, issue's robot, Pin+CG ns, Pinocchio ns, source)
+REFERENCE = [(f, p, r, *reference(f, p, r)) for f, p, r in TARGET_ROWS]
 # the factor by which dyngen must beat Pin+CG and Pinocchio (None: no target)
 FACTORS = {"rnea_derivatives_with_M": (2, 3), "aba_derivatives": (2, 3), "minv": (2, 2),
            "rnea": (2, None), "crba": (2, None), "aba": (2, None)}
