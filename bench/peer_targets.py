@@ -112,6 +112,16 @@ def read_callgrind(path):
     return counts
 
 
+def read_frames(path):
+    """{(model, function): operations} that any choice of body frames leaves, from
+    dyngen_work_counts' work_counts.json (its rounded-rotation arms, fixed base)."""
+    bound = {(r["model"], r["algorithm"]): r["twists_only"]
+             for r in json.load(open(path))["rounded_rotations"]}
+    bound.update({(m, "rnea_derivatives_with_M"): bound[m, "rnea_derivatives"] + bound[m, "crba"]
+                  for m, _ in list(bound)})
+    return bound
+
+
 def verdict(ns, reference, factor):
     """'yes', '**no**' or '-' (no target or no figure) for ns against reference / factor."""
     if factor is None or reference is None:
@@ -119,7 +129,7 @@ def verdict(ns, reference, factor):
     return "yes" if ns * factor <= reference else "**no**"
 
 
-def row(entry, times, ops, fastest, counts):
+def row(entry, times, ops, fastest, counts, frames):
     """The table's row for one target entry, and its status: 'met', 'missed' or 'no figure'."""
     function, package, robot, codegen, generic, source = entry
     ir, i1 = counts.get((package, function), (None, None))
@@ -140,6 +150,10 @@ def row(entry, times, ops, fastest, counts):
                 limit += f"; {peer}'s within the reference's ±15%"
         if i1 is not None and i1 >= CACHE_MISSES:
             limit += f"; instruction cache ({i1} misses a call)"
+        bound = frames.get((package.removesuffix(" fixed"), function))
+        if bound is not None:
+            limit += (f"; any body frames leave {bound} ops: {bound * ns / n_ops:.0f} ns at this "
+                      f"row's rate, against {min(targets):.0f} wanted")
     ratio = lambda r: "-" if r is None else f"{r / ns:.2f}"
     figure = lambda r: "-" if r is None else str(r)
     status = "missed" if "**no**" in met else "met" if targets else "no figure"
@@ -171,6 +185,7 @@ def main():
     parser.add_argument("json", nargs="?", help="dyngen_derivatives_bench's --benchmark_out")
     parser.add_argument("operations", nargs="?", help="what it printed (its operation table)")
     parser.add_argument("--callgrind", help="peer_targets.sh's instruction counts")
+    parser.add_argument("--frames", help="dyngen_work_counts' work_counts.json")
     parser.add_argument("--rows", action="store_true",
                         help="print the target rows' package|function, once each, and stop")
     parser.add_argument("--out", default="bench/results/peer_targets.md")
@@ -182,9 +197,10 @@ def main():
         parser.error("give the run's JSON and its printed output, or --rows")
     times, ops = read_times(args.json), read_operations(args.operations)
     counts = read_callgrind(args.callgrind) if args.callgrind else {}
+    frames = read_frames(args.frames) if args.frames else {}
     fastest = max(ops[e[1], e[0]] / times[f"{e[1]}/{e[0]}"] for e in REFERENCE
                   if f"{e[1]}/{e[0]}" in times)
-    rows, statuses = zip(*(row(e, times, ops, fastest, counts) for e in REFERENCE))
+    rows, statuses = zip(*(row(e, times, ops, fastest, counts, frames) for e in REFERENCE))
     with open(args.out, "w") as md:
         md.write(
             "# Issue 45's targets\n\n"
@@ -202,8 +218,10 @@ def main():
             "the bench's states, the harness's own instructions taken off). A missed row gives "
             "the rate its strictest target needs, over the "
             f"fastest rate of any row of the run ({fastest:.2f} ops/ns): above 1, only fewer "
-            f"operations can meet it; and the instruction cache from {CACHE_MISSES} misses a "
-            "call.\n\n"
+            f"operations can meet it; the instruction cache from {CACHE_MISSES} misses a "
+            "call; and on the arms with rounded rotations, the operations that any choice of "
+            "body frames would still leave (bench/results/work_counts.md, \"Rounded "
+            "rotations\") and the time they would take at the row's own rate.\n\n"
             "| function | issue's robot | dyngen package | dyngen | Pin+CG | Pin+CG / dyngen | "
             "met | Pinocchio | Pinocchio / dyngen | met | source | ops | ops/ns | Ir | "
             "I1 misses | limit |\n"

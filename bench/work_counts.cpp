@@ -9,11 +9,14 @@
 //                 pairs for CRBA, with n the degrees of freedom.
 // Then forward dynamics both ways on the chains: generated ABA against generated CRBA, the bias
 // h = RNEA(q, v, 0) and a dense LDL^T solve of M qdd = tau - h; and for ur5, iiwa14, solo12 and
-// atlas, rnea_derivatives' operations by pass beside RNEA's and ABA's. Writes work_counts.md and
+// atlas, rnea_derivatives' operations by pass beside RNEA's and ABA's; and for the arms with
+// rounded rotations, their functions as read, with the rotations cut to the joints' twists (the
+// least any body frames leave) and snapped. Writes work_counts.md and
 // work_counts.json into OUTPUT_DIR and prints the Markdown; progress goes to stderr.
 //
 // usage: dyngen_work_counts OUTPUT_DIR
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -26,6 +29,7 @@
 
 #include "dyngen/dyngen.hpp"
 #include "emit.hpp"
+#include "generate.hpp"
 #include "op_counter.hpp"
 #include "planar_counts.hpp"
 #include "robot.hpp"
@@ -77,6 +81,18 @@ struct DerivativeRow {
 
 /// The robots of issue 13's targets.
 constexpr const char* derivative_robots[] = {"ur5", "iiwa14", "solo12", "atlas"};
+
+/// One function of an arm with rounded rotations, three ways.
+struct FrameRow {
+  std::string model, algorithm;
+  long as_read, twists_only, snapped;
+  double least_cos, most_cos;  // |cos alpha| of the twists within 1e-9 of a right angle
+};
+
+/// The arms whose URDFs write rounded rotations (issue 45), and the functions counted on them.
+constexpr const char* rounded_arms[] = {"iiwa14", "panda"};
+constexpr const char* frame_algorithms[] = {"rnea", "crba", "aba", "minv", "rnea_derivatives",
+                                            "aba_derivatives"};
 
 long seed_work(Algorithm a, long n) { return a == Computes::MassMatrix ? n * (n + 1) / 2 : n; }
 
@@ -175,19 +191,64 @@ std::vector<Row> count_model(const std::string& name, const std::string& kind,
   return rows;
 }
 
+/// add, mul, div and neg: sin and cos are the same few in every function of a robot.
+long arithmetic(const gen::OpCounts& c) { return c.add + c.mul + c.div + c.neg; }
+
+/// The generated code's arithmetic operations of one function of a model.
+long arithmetic(const Model<double>& model, const char* algorithm) {
+  return arithmetic(gen::count_ops(gen::trace<double>(algorithm, model)));
+}
+
 DerivativeRow count_derivatives(const std::string& name, const std::string& base,
                                 const Model<double>& model) {
-  // add, mul, div and neg: sin and cos are the same few in every function of a robot
-  auto arithmetic = [](const gen::OpCounts& c) { return c.add + c.mul + c.div + c.neg; };
-  auto total = [&](const char* algorithm) {
-    return arithmetic(gen::count_ops(gen::trace<double>(algorithm, model)));
-  };
+  auto total = [&](const char* algorithm) { return arithmetic(model, algorithm); };
   const auto by_pass = gen::count_ops_by_pass(gen::trace<double>("rnea_derivatives", model));
   auto pass = [&](Pass p) { return by_pass.count(p) ? arithmetic(by_pass.at(p)) : 0L; };
   DerivativeRow d{name, base, model.nv, total("rnea"), total("aba"), pass(Pass::Forward),
                   pass(Pass::Backward), pass(Pass::Pairs), 0, total("aba_derivatives")};
   for (const auto& [p, c] : by_pass) d.rnea_derivatives += arithmetic(c);
   return d;
+}
+
+/// The model with each joint rotation cut to what no choice of body frames removes: with every
+/// 1-DoF joint's axis made z, a body's rotation becomes Rx(alpha), alpha the angle between its
+/// joint's axis and its parent's (identity under the base or a joint without an axis). Offsets
+/// and inertias are kept as read, so the count is a lower bound: real frames of the modified
+/// Denavit-Hartenberg kind would add the common normals' offsets, the joint-angle offsets and
+/// rotated inertias. Only the pattern of zeros and ones matters to the count.
+Model<double> twists_only(Model<double> model, double& least_cos, double& most_cos) {
+  const auto has_axis = [&](int i) {
+    return i >= 0 && quaternion_offset(model.joint_type[i]) < 0;
+  };
+  const Model<double> read = model;
+  for (int i = 0; i < model.nbodies; ++i) {
+    if (!has_axis(i)) throw std::logic_error("twists_only: a joint without an axis");
+    const int p = read.parent[i];
+    const Vec3<double>& k = read.joint_axis[i];
+    const double c = has_axis(p) ? dot(k, mul(read.X_tree[i].E, read.joint_axis[p])) : 1.0;
+    const double s = std::sqrt(std::max(0.0, 1 - c * c));
+    if (std::abs(c) <= 1e-9) {
+      least_cos = std::min(least_cos, std::abs(c));
+      most_cos = std::max(most_cos, std::abs(c));
+    }
+    model.X_tree[i].E = Mat3<double>{1, 0, 0, 0, c, s, 0, -s, c};
+    model.joint_axis[i] = {0, 0, 1};
+    if (is_revolute(model.joint_type[i])) model.joint_type[i] = JointType::RevoluteZ;
+  }
+  return model;
+}
+
+std::vector<FrameRow> count_frames(const std::string& name, const Model<double>& model) {
+  std::fprintf(stderr, "  %s: rotations as read, twists only, snapped\n", name.c_str());
+  Model<double> snapped = model;
+  snap(snapped, gen::suggested_snap);
+  double least_cos = 1, most_cos = 0;
+  const Model<double> twists = twists_only(model, least_cos, most_cos);
+  std::vector<FrameRow> rows;
+  for (const char* a : frame_algorithms)
+    rows.push_back({name, a, arithmetic(model, a), arithmetic(twists, a), arithmetic(snapped, a),
+                    least_cos, most_cos});
+  return rows;
 }
 
 // ---- output ------------------------------------------------------------------------------
@@ -211,8 +272,29 @@ const Row& find(const std::vector<Row>& rows, const std::string& model, Algorith
   throw std::logic_error("no row for " + model);
 }
 
+std::string frames_markdown(const std::vector<FrameRow>& frames) {
+  std::string md =
+      "\n## Rounded rotations: what body frames could save\n\n"
+      "Generated code, add, mul, div and neg, on the arms whose URDFs write rounded rotations "
+      "(fixed base). *As read*: the file's model. *Twists only*: each joint rotation cut to "
+      "Rx(alpha), alpha the angle between the joint's axis and its parent's, with offsets and "
+      "inertias as read (`twists_only` in work_counts.cpp): a lower bound for any choice of body "
+      "frames, modified Denavit-Hartenberg ones included, since a twist is the angle between two "
+      "joint axes, which no frame changes, and the file's near right angles are not exact "
+      "(*\\|cos alpha\\|*: the least and largest over the twists within 1e-9 of one). "
+      "*Snapped*: `--snap 1e-9`, which changes the model.\n\n"
+      "| robot | \\|cos alpha\\| | function | as read | twists only | snapped | "
+      "twists only / as read | snapped / as read |\n|---|---|---|---:|---:|---:|---:|---:|\n";
+  for (const FrameRow& f : frames)
+    md += fmt::format("| {} | {:.1e} to {:.1e} | {} | {} | {} | {} | {} | {} |\n", f.model,
+                      f.least_cos, f.most_cos, f.algorithm, f.as_read, f.twists_only, f.snapped,
+                      ratio(f.twists_only, f.as_read), ratio(f.snapped, f.as_read));
+  return md;
+}
+
 std::string markdown(const std::vector<Row>& rows, const std::vector<DenseRow>& dense,
-                     const std::vector<DerivativeRow>& derivatives) {
+                     const std::vector<DerivativeRow>& derivatives,
+                     const std::vector<FrameRow>& frames) {
   std::string md = fmt::format(
       "# Work counts\n\n"
       "Operations of one call, counted, not timed (`dyngen_work_counts`, bench/README.md). "
@@ -319,11 +401,12 @@ std::string markdown(const std::vector<Row>& rows, const std::vector<DenseRow>& 
                       d.rnea_derivatives, ratio(d.forward + d.backward, d.rnea),
                       ratio(d.rnea_derivatives, d.rnea), d.aba, d.aba_derivatives,
                       ratio(d.aba_derivatives, d.aba));
-  return md;
+  return md + frames_markdown(frames);
 }
 
 nlohmann::json json(const std::vector<Row>& rows, const std::vector<DenseRow>& dense,
-                    const std::vector<DerivativeRow>& derivatives) {
+                    const std::vector<DerivativeRow>& derivatives,
+                    const std::vector<FrameRow>& frames) {
   nlohmann::json out = {
       {"description",
        "operations of one call: generated (live operations of the simplified trace), runtime "
@@ -332,7 +415,8 @@ nlohmann::json json(const std::vector<Row>& rows, const std::vector<DenseRow>& d
        "add and sub"},
       {"functions", nlohmann::json::array()},
       {"forward_dynamics", nlohmann::json::array()},
-      {"derivatives", nlohmann::json::array()}};
+      {"derivatives", nlohmann::json::array()},
+      {"rounded_rotations", nlohmann::json::array()}};
   for (const Row& r : rows) {
     nlohmann::json f = {{"model", r.model},
                         {"kind", r.kind},
@@ -357,6 +441,14 @@ nlohmann::json json(const std::vector<Row>& rows, const std::vector<DenseRow>& d
                                     {"pairs", d.pairs},
                                     {"total", d.rnea_derivatives}}},
                                   {"aba_derivatives", d.aba_derivatives}});
+  for (const FrameRow& f : frames)
+    out["rounded_rotations"].push_back({{"model", f.model},
+                                        {"algorithm", f.algorithm},
+                                        {"as_read", f.as_read},
+                                        {"twists_only", f.twists_only},
+                                        {"snapped", f.snapped},
+                                        {"least_abs_cos_twist", f.least_cos},
+                                        {"largest_abs_cos_twist", f.most_cos}});
   for (const DenseRow& d : dense)
     out["forward_dynamics"].push_back({{"model", d.model},
                                        {"dof", d.nv},
@@ -411,10 +503,19 @@ int run(const std::filesystem::path& output) {
     }
   }
 
+  std::vector<FrameRow> frames;
+  for (const test::RobotFile& robot : test::robot_files())
+    if (std::find(std::begin(rounded_arms), std::end(rounded_arms), robot.name) !=
+        std::end(rounded_arms)) {
+      const std::vector<FrameRow> counted = count_frames(robot.name, test::load_for_aba(robot));
+      frames.insert(frames.end(), counted.begin(), counted.end());
+    }
+
   std::filesystem::create_directories(output);
-  const std::string md = markdown(rows, dense, derivatives);
+  const std::string md = markdown(rows, dense, derivatives, frames);
   std::ofstream(output / "work_counts.md") << md;
-  std::ofstream(output / "work_counts.json") << json(rows, dense, derivatives).dump(1) << "\n";
+  std::ofstream(output / "work_counts.json")
+      << json(rows, dense, derivatives, frames).dump(1) << "\n";
   std::fputs(md.c_str(), stdout);
   std::fprintf(stderr, "wrote %s and %s\n", (output / "work_counts.md").c_str(),
                (output / "work_counts.json").c_str());

@@ -4,8 +4,9 @@
 # instruction-cache misses per call under callgrind (as scripts/callgrind_derivatives.sh does),
 # then writes bench/results/peer_targets.md (the targets, met or missed, with those measures),
 # peer_targets.json (Google Benchmark's output), peer_targets.txt (what the bench printed: its
-# operation table) and peer_targets_callgrind.txt (package|function|instructions|misses). Extra
-# arguments go to the bench. About 10 minutes once built.
+# operation table) and peer_targets_callgrind.txt (package|function|instructions|misses); the
+# operations that body frames cannot remove come from dyngen_work_counts, which it reruns
+# (work_counts.md and .json). Extra arguments go to the bench. About 10 minutes once built.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/lib/callgrind.sh
@@ -31,5 +32,9 @@ while IFS='|' read -r package function; do
   echo "$package|$function|$(((ir - harness_ir) / calls))|$(((i1 - harness_i1) / calls))" \
     >>"$results/peer_targets_callgrind.txt"
 done < <(python3 bench/peer_targets.py --rows)
+echo "== counting operations (dyngen_work_counts)"
+cmake --build "${BUILD_DIR:-build-bench}" --target dyngen_work_counts -j "$(nproc)"
+"${BUILD_DIR:-build-bench}/bench/dyngen_work_counts" "$results" >/dev/null
 python3 bench/peer_targets.py "$results/peer_targets.json" "$results/peer_targets.txt" \
-  --callgrind "$results/peer_targets_callgrind.txt" --out "$results/peer_targets.md"
+  --callgrind "$results/peer_targets_callgrind.txt" --frames "$results/work_counts.json" \
+  --out "$results/peer_targets.md"
