@@ -1,7 +1,8 @@
 # Installs dyngen from DYNGEN_BUILD into INSTALL/prefix, moves it to INSTALL/moved, then
 # configures, builds and tests a generated directory with its own CMakeLists.txt against the
 # moved install, as a user would: cmake -S SOURCE -B BINARY -Ddyngen_DIR=... && cmake --build
-# && ctest.
+# && ctest; with the package's warnings-as-errors option WERROR (UR5_WERROR) on, as dyngen's tests
+# hold its code to that.
 file(REMOVE_RECURSE ${BINARY} ${INSTALL})
 set(dyngen_DIR ${INSTALL}/moved/lib/cmake/dyngen)
 foreach(step IN ITEMS install move configure build test)
@@ -10,7 +11,8 @@ foreach(step IN ITEMS install move configure build test)
   elseif(step STREQUAL "move")
     set(cmd ${CMAKE_COMMAND} -E rename ${INSTALL}/prefix ${INSTALL}/moved)
   elseif(step STREQUAL "configure")
-    set(cmd ${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} -Ddyngen_DIR=${dyngen_DIR})
+    set(cmd ${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} -Ddyngen_DIR=${dyngen_DIR}
+            -D${WERROR}=ON)
   elseif(step STREQUAL "build")
     set(cmd ${CMAKE_COMMAND} --build ${BINARY})
   else()

@@ -18,6 +18,9 @@ endif()
 if(NOT out MATCHES "-mavx2")
   message(FATAL_ERROR "${upper}_ISA=avx2 did not reach the compiler:\n${out}")
 endif()
+if(out MATCHES "-Werror" OR NOT out MATCHES "-Wextra")
+  message(FATAL_ERROR "by default the library must build with warnings, not errors:\n${out}")
+endif()
 if(NOT EXISTS ${BINARY}/lib${NAME}_dynamics.a)
   message(FATAL_ERROR "no lib${NAME}_dynamics.a in ${BINARY}:\n${out}")
 endif()
@@ -26,10 +29,21 @@ if(check)
   message(FATAL_ERROR "${upper}_BUILD_CHECK=OFF, yet the check was built: ${check}")
 endif()
 
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} -D${upper}_WERROR=ON
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(rc EQUAL 0)
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${BINARY} --verbose
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+endif()
+if(NOT rc EQUAL 0 OR NOT out MATCHES "-Werror")
+  message(FATAL_ERROR "${upper}_WERROR=ON did not build with -Werror (exit status ${rc}):\n${out}")
+endif()
+
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} -D${upper}_ISA=sse3
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 string(REGEX REPLACE "[ \n]+" " " flat "${out}")  # CMake wraps its messages
 if(rc EQUAL 0 OR NOT flat MATCHES "${upper}_ISA is 'sse3': give dispatch, sse2, avx2 or avx512")
   message(FATAL_ERROR "${upper}_ISA=sse3 was not refused by name (exit status ${rc}):\n${out}")
 endif()
-message(STATUS "${NAME}: built with ${upper}_ISA=avx2, refused ${upper}_ISA=sse3")
+message(STATUS "${NAME}: built with ${upper}_ISA=avx2, with ${upper}_WERROR=ON, refused "
+               "${upper}_ISA=sse3")
