@@ -468,7 +468,7 @@ template <class T>
 std::string CodePrinter<T>::kernel_call(int c) {
   const std::vector<KernelRecord>& calls = program_.graph.calls;
   const KernelRecord& call = calls[c];
-  std::string text = fmt::format("    // dyngen::kernels::{}: {}\n", call.kernel,
+  std::string text = fmt::format("    // dyngen_kernels::{}: {}\n", call.kernel,
                                  to_string(count_ops_of(call)));
   std::vector<std::string> arguments;
   for (const int x : call.ints) arguments.push_back(std::to_string(x));
@@ -512,7 +512,7 @@ std::string CodePrinter<T>::kernel_call(int c) {
     arguments.push_back(array);
   }
   return text + dialect_.kernel_call(call, std::move(arguments),
-                                     fmt::format("dyngen::kernels::{}", call.kernel), scalar_);
+                                     fmt::format("dyngen_kernels::{}", call.kernel), scalar_);
 }
 
 /// The statement of node id, which names its value.

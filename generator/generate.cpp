@@ -479,14 +479,24 @@ GeneratedFile cmake_file(const PackageContext& p, const Package& package,
   return {"CMakeLists.txt", fill("CMakeLists.txt.in", values)};
 }
 
+/// text with `from` replaced by `to`, once; `from` must be there.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("kernels.hpp: no " + from);
+  return text.replace(at, from.size(), to);
+}
+
 /// The runtime's kernels.hpp as a package's dyngen_kernels.hpp: its include of sincos.h names
-/// the package's copy, dyngen_sincos.h.
-std::string kernels_header() {
+/// the package's copy, dyngen_sincos.h, and its templates move from dyngen::kernels to
+/// ns::dyngen_kernels, so that packages of other dyngen versions (other kernels), the runtime's
+/// own and a package compiled with other flags never share a definition in one program.
+std::string kernels_header(const std::string& ns) {
   std::string text(template_text("kernels.hpp"));
-  const std::string include = "#include \"sincos.h\"\n";
-  const std::size_t at = text.find(include);
-  if (at == std::string::npos) throw std::logic_error("kernels.hpp: no " + include);
-  return text.replace(at, include.size(), "#include \"dyngen_sincos.h\"\n");
+  text = replaced(text, "#include \"sincos.h\"\n", "#include \"dyngen_sincos.h\"\n");
+  text = replaced(text, "namespace dyngen {\nnamespace kernels {\n",
+                  fmt::format("namespace {} {{\nnamespace dyngen_kernels {{\n", ns));
+  return replaced(text, "}  // namespace kernels\n}  // namespace dyngen\n",
+                  fmt::format("}}  // namespace dyngen_kernels\n}}  // namespace {}\n", ns));
 }
 
 /// The package's files under a banner.
@@ -502,7 +512,7 @@ std::vector<GeneratedFile> package_files(const PackageContext& p, const Package&
   // the runtime's own header, verbatim: both sides compute sin and cos with the same code
   files.push_back({"dyngen_sincos.h", std::string(template_text("sincos.h"))});
   if (package.calls_kernels)
-    files.push_back({"dyngen_kernels.hpp", kernels_header()});
+    files.push_back({"dyngen_kernels.hpp", kernels_header(p.ns)});
   if (package.uses_lie) files.push_back({"dyngen_lie.h", std::string(template_text("lie.h"))});
   add_check_files<T>(files, p, package, summary.code_banner);
   files.push_back(cmake_file(p, package, banner));

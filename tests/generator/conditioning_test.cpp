@@ -239,7 +239,7 @@ TEST(Range, NoWarningForTheSharedAndStiffRobotsInFloat) {
     EXPECT_NE(g.conditioning_text.find("float's largest number is 3.4e+38"), std::string::npos)
         << file;
     if (file == "atlas.urdf") {
-      EXPECT_NE(g.files[1].text.find("dyngen::kernels::"), std::string::npos) << g.files[1].name;
+      EXPECT_NE(g.files[1].text.find("dyngen_kernels::"), std::string::npos) << g.files[1].name;
     }
   }
 }

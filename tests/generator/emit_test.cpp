@@ -632,8 +632,8 @@ TEST(KernelCalls, OnlyTheScalarCppCodeCallsKernelsForLanes) {
   options.batch = 2;
   std::map<std::string, std::string> text;
   for (const GeneratedFile& f : generate(robot, options).files) text[f.name] = f.text;
-  EXPECT_NE(text["solo_dynamics.cpp"].find("dyngen::kernels::neg_product("), std::string::npos);
-  EXPECT_EQ(text["solo_batch.cpp"].find("dyngen::kernels::"), std::string::npos);
+  EXPECT_NE(text["solo_dynamics.cpp"].find("dyngen_kernels::neg_product("), std::string::npos);
+  EXPECT_EQ(text["solo_batch.cpp"].find("dyngen_kernels::"), std::string::npos);
   options.batch = 0;
   options.language = "c";
   for (const GeneratedFile& f : generate(robot, options).files)

@@ -555,7 +555,7 @@ TEST(KernelCalls, SmallCallsAreInlinedAndBigOnesRecorded) {
   EXPECT_GT(called.total(), inlined.total());
   const std::string code =
       emit_code(trace<double>("aba_derivatives", model, true, 0), model, Structure::Shared).body;
-  EXPECT_NE(code.find("dyngen::kernels::neg_product("), std::string::npos);
+  EXPECT_NE(code.find("dyngen_kernels::neg_product("), std::string::npos);
   // the outputs that a kernel writes whole are passed to it, not copied
   EXPECT_NE(code.find("dqdd_dq: written by the kernel"), std::string::npos) << code;
   EXPECT_EQ(code.find("dqdd_dq[0] ="), std::string::npos);

@@ -3,9 +3,10 @@
 // derivatives of forward dynamics, the columns of the derivatives of contact dynamics). The
 // runtime calls them (dyngen::run_kernel), and generated code calls this same file, copied into
 // each package as dyngen_kernels.hpp, so both compute the same bits; the generator records a
-// call instead of unrolling the loops, which keeps a big robot's code small. Self-contained
-// C++17: no allocation, and no include but sincos.h (dyngen_sincos.h in a package) for
-// DYNGEN_DISPATCH.
+// call instead of unrolling the loops, which keeps a big robot's code small. In a package the
+// namespace is the package's own, NAME::dyngen_kernels: packages of other dyngen versions and the
+// runtime then never share a definition in one program. Self-contained C++17: no allocation, and
+// no include but sincos.h (dyngen_sincos.h in a package) for DYNGEN_DISPATCH.
 #pragma once
 
 #include "sincos.h"
