@@ -17,6 +17,10 @@ std::unique_ptr<Backend> make_batch_backend(const GenerateOptions& options);
 std::unique_ptr<Backend> make_python_backend(const GenerateOptions& options);
 std::unique_ptr<Backend> make_torch_backend(const GenerateOptions& options);
 
+std::string floating_point_lines(const std::string& file) {
+  return fill("floating_point.in", {{"file", file}});
+}
+
 const std::vector<BackendEntry>& backend_registry() {
   static const std::vector<BackendEntry> registry{
       {"c++", nullptr, make_cpp_backend, "c++ (C++17, in a namespace)"},

@@ -62,6 +62,11 @@ struct PackageSummary {
   }
 };
 
+/// The lines that open every source file of generated code (floating_point.in): they hold its
+/// floating-point semantics against the flags of a build that compiles it (`file`: its name, for
+/// the error under fast-math).
+std::string floating_point_lines(const std::string& file);
+
 class Backend {
  public:
   virtual ~Backend() = default;

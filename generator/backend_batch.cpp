@@ -208,7 +208,8 @@ void BatchBackend::add_files(std::vector<GeneratedFile>& files, const PackageCon
   h.insert({{"robot", safe_text(p.robot.name)},
             {"sincos", p.single ? "dyngen_sincosf" : "dyngen_sincos"},
             {"declarations", declarations_.substr(0, declarations_.size() - 1)}});
-  cpp.insert({{"joint_trig", emit_joint_trig(p.model, p.single, *this)},
+  cpp.insert({{"floating_point", floating_point_lines(p.ns + "_batch.cpp")},
+              {"joint_trig", emit_joint_trig(p.model, p.single, *this)},
               {"support_includes", summary.support_includes()},
               {"definitions", definitions_}});
   files.push_back({p.ns + "_batch.hpp", fill("batch.hpp.in", h)});

@@ -59,6 +59,7 @@ class CBackend final : public LanguageBackend {
     files.push_back({header(), fill("dynamics.h.in", h)});
     files.push_back(
         {source(), fill("dynamics.c.in", {{"banner", summary.code_banner},
+                                          {"floating_point", floating_point_lines(source())},
                                           {"name", p.ns},
                                           {"NAME", upper(p.ns)},
                                           {"scalar", p.scalar},

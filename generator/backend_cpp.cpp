@@ -23,6 +23,7 @@ class CppBackend final : public LanguageBackend {
     files.push_back({this->header(), fill("dynamics.hpp.in", header)});
     files.push_back({source(), fill("dynamics.cpp.in",
                                     {{"banner", summary.code_banner},
+                                     {"floating_point", floating_point_lines(source())},
                                      {"name", p.ns},
                                      {"namespace", p.ns},
                                      {"scalar", p.scalar},

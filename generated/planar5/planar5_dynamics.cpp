@@ -20,6 +20,37 @@
 //   smallest ABA pivot D/max|IA| 0.025 (joint 'link1_joint'), articulated inertias span 81:
 //   ABA may lose 1.6 digits, keeping about 14.3 in double and 5.6 in float
 //   values reach 6.6e+03 (aba) at typical states and 2.4e+17 (aba) at extreme ones; double's largest number is 1.8e+308
+
+// Bit for bit with the dyngen runtime needs IEEE-754 arithmetic as written: no a*b+c contracted
+// into an FMA, no fast-math. The package's CMake passes -ffp-contract=off; these lines hold the
+// same for a build that compiles this file with flags of its own (-march=native, -mfma). Define
+// DYNGEN_FP_FROM_FLAGS to let the flags decide instead, giving up that equality.
+#if !defined(DYNGEN_FP_FROM_FLAGS)
+#if defined(__FAST_MATH__)
+#error "planar5_dynamics.cpp: -ffast-math or -Ofast breaks equality with the runtime: compile without"
+#endif
+#if defined(__clang__)
+// clang honours this, unless -ffp-contract=fast, which overrides every pragma: never pass that
+#pragma STDC FP_CONTRACT OFF
+#elif defined(__GNUC__)
+// GCC ignores the standard pragma (and warns), so its own option, for every function below
+#pragma GCC optimize("fp-contract=off")
+#if defined(__FMA__)
+// where there is FMA (-mfma, -march=haswell and later) GCC 12's vectorizer still fuses a*b-c
+// beside a*b+c (vfmaddsub) whatever the option says
+#pragma GCC optimize("no-tree-slp-vectorize")
+#endif
+#if !__STDC_HOSTED__
+// an optimize pragma forgets what -ffreestanding implies: loops would become calls of memset
+#pragma GCC optimize("no-tree-loop-distribute-patterns")
+#endif
+#elif defined(_MSC_VER)
+#pragma fp_contract(off)
+#else
+#pragma STDC FP_CONTRACT OFF
+#endif
+#endif
+
 #include "planar5_dynamics.hpp"
 
 #include "dyngen_sincos.h"
