@@ -125,9 +125,11 @@ bool is_local_variant(const Algorithm& a, const std::vector<Algorithm>& known) {
 }
 
 /// The comma-separated list of names in `known`, in `known`'s order whatever the order written;
-/// "all" for every one but the local-axes variants, which --jacobian-frame adds.
+/// "all" for every one but the local-axes variants, which --jacobian-frame adds. Errors quote
+/// `written`, what the user wrote (text with the default set added: with_defaults).
 std::vector<Algorithm> parse_algorithms(const std::string& text,
-                                        const std::vector<Algorithm>& known) {
+                                        const std::vector<Algorithm>& known,
+                                        const std::string& written = "") {
   std::string names;
   for (const Algorithm& a : known) names += (names.empty() ? "" : ", ") + a;
   if (text == "all") {
@@ -141,8 +143,9 @@ std::vector<Algorithm> parse_algorithms(const std::string& text,
   std::string item;
   while (std::getline(s, item, ','))
     if (std::find(known.begin(), known.end(), item) == known.end())
-      throw InputError(fmt::format("--algorithms {}: unknown algorithm '{}' ({}, or all)", text,
-                                   safe_text(item), names));
+      throw InputError(fmt::format("--algorithms {}: unknown algorithm '{}' ({}, or all)",
+                                   safe_text(written.empty() ? text : written), safe_text(item),
+                                   names));
     else
       listed.push_back(item);
   if (listed.empty()) throw InputError("--algorithms: name at least one of " + names);
@@ -175,6 +178,29 @@ std::string comma_list(const std::vector<Algorithm>& names) {
   std::string text;
   for (const Algorithm& a : names) text += (text.empty() ? "" : ",") + a;
   return text;
+}
+
+/// --algorithms' text with the default set written out: "+a,+b" adds a and b to `defaults`
+/// (every item then starts with '+'); any other text is returned as it is.
+std::string with_defaults(const std::string& text, const std::vector<Algorithm>& defaults) {
+  if (!text.starts_with('+')) {
+    if (text.find(",+") != std::string::npos)
+      throw InputError(fmt::format(
+          "--algorithms {}: either name the whole set (rnea,crba) or add to the default set "
+          "(+rnea_derivatives), not both",
+          safe_text(text)));
+    return text;
+  }
+  std::string out = comma_list(defaults);
+  std::stringstream s(text);
+  for (std::string item; std::getline(s, item, ',');) {
+    if (!item.starts_with('+') || item.size() == 1)
+      throw InputError(fmt::format(
+          "--algorithms {}: '{}': to add to the default set, start every name with +",
+          safe_text(text), safe_text(item)));
+    out += "," + item.substr(1);
+  }
+  return out;
 }
 
 /// A number in [lo, hi] (an integer if `integer`): CLI11's Range lets NaN through (no
@@ -483,7 +509,8 @@ struct CodeFlags {
   void add_to(CLI::App& app, bool firmware) {
     algorithms_given = app.add_option("--algorithms", algorithms,
                    "comma-separated subset of " + comma_list(algorithm_names()) +
-                       ", or all (all but the _local variants, which --jacobian-frame chooses)")
+                       ", or all (all but the _local variants, which --jacobian-frame chooses), "
+                       "or +NAME,... to add to the default set")
         ->capture_default_str();
     app.add_option("--jacobian-frame", jacobian_frame,
                    "the axes of frame_jacobians and frame_accelerations: world (the base's axes "
@@ -572,18 +599,36 @@ struct CodeFlags {
           name, max_identifier, identifier(name)));
   }
 
+  /// "functions: ...", the set generated, and what a list given whole left out of the default
+  /// set (--algorithms rnea_derivatives drops rnea, crba and aba; +NAME adds instead).
+  std::string functions_text(const std::vector<Algorithm>& generated) const {
+    std::string text = fmt::format("functions: {}", fmt::join(generated, ", "));
+    if (algorithms_given->count() == 0 || algorithms.starts_with('+') || algorithms == "all")
+      return text + "\n";
+    std::vector<Algorithm> left_out;
+    for (const Algorithm& a : torch ? torch_default_algorithms() : default_algorithm_names())
+      if (std::find(generated.begin(), generated.end(), a) == generated.end())
+        left_out.push_back(a);
+    if (left_out.empty()) return text + "\n";
+    return text + fmt::format(" (not the default {}: --algorithms +NAME adds to the default set)\n",
+                              fmt::join(left_out, ", "));
+  }
+
   /// The options for generate(); `command` names who warns about --frames (frames_text).
   GenerateOptions options(const Robot& robot, const ModelFlags& model,
                           const char* command) const {
     GenerateOptions options;
-    const std::string listed = torch && algorithms_given->count() == 0
-                                   ? comma_list(torch_default_algorithms())
-                                   : algorithms;
-    options.algorithms = with_jacobian_frame(parse_algorithms(listed, algorithm_names()),
-                                             jacobian_frame, algorithm_names());
+    const std::vector<Algorithm> defaults =
+        torch ? torch_default_algorithms() : default_algorithm_names();
+    const bool given = algorithms_given->count() > 0, adding = given && algorithms.starts_with('+');
+    const std::string listed = given ? with_defaults(algorithms, defaults) : comma_list(defaults);
+    options.algorithms =
+        with_jacobian_frame(parse_algorithms(listed, algorithm_names(), algorithms),
+                            jacobian_frame, algorithm_names());
     if (torch) options.algorithms = with_torch_backwards(options.algorithms, algorithm_names());
-    options.algorithms = with_constraints(options.algorithms, robot.model,
-                                          algorithms_given->count() > 0 ? listed : "");
+    // added to, the default set gains the constraints' algorithms as it does untouched
+    options.algorithms =
+        with_constraints(options.algorithms, robot.model, given && !adding ? listed : "");
     options.single_precision = scalar == "float";
     options.language = lang;
     options.target = static_cast<Target>(
@@ -627,7 +672,7 @@ Robot read_robot(const std::string& input, const ModelFlags& flags, const char* 
 /// record: "dyngen", the subcommand and each argument, quoted where it must be.
 std::string command_line(int argc, char** argv) {
   std::string text = "dyngen";
-  for (int k = 0; k < argc; ++k) text += " " + shell_word(argv[k]);
+  for (int k = 0; k < argc; ++k) text += ' ' + shell_word(argv[k]);
   return text;
 }
 
@@ -703,7 +748,8 @@ int report_main(int argc, char** argv) {
                  "output directory (created if missing); the harness is built in DIR/harness")
       ->required();
   app.add_option("--algorithms", algorithms,
-                 "comma-separated subset of " + comma_list(algorithm_names()) + ", or all")
+                 "comma-separated subset of " + comma_list(algorithm_names()) +
+                     ", or all, or +NAME,... to add to the default set")
       ->capture_default_str();
   app.add_option("--states", options.states, "random states for the errors")
       ->check(number_in(1, 10000000, true))
@@ -723,7 +769,9 @@ int report_main(int argc, char** argv) {
   app.add_flag("-q,--quiet", options.quiet, "print errors and warnings only");
   if (const auto status = parse_command_line(app, argc, argv)) return *status;
   return run_reporting_errors("dyngen report", [&] {
-    options.algorithms = parse_algorithms(algorithms, algorithm_names());
+    options.algorithms =
+        parse_algorithms(with_defaults(algorithms, default_algorithm_names()), algorithm_names(),
+                         algorithms);
     options.package_dir = package_dir();
     options.command = command_line(argc, argv);
     const Robot robot = read_robot(input, flags, " report", options.quiet);
@@ -825,7 +873,7 @@ int main(int argc, char** argv) {
                  robot.model.nv,
                  robot.model.nbodies);
       if (!robot.locked.empty()) fmt::print(", {} joints locked", robot.locked.size());
-      fmt::print("\n");
+      fmt::print("\n{}", code.functions_text(options.algorithms));
       if (std::any_of(options.algorithms.begin(), options.algorithms.end(), uses_frames)) {
         std::vector<std::string> names;
         for (const Frame<double>& f : robot.model.frames) names.push_back(safe_text(f.name));

@@ -462,6 +462,33 @@ TEST_F(WritePackage, CommandWritesTheJacobiansInTheAxesAsked) {
             (Names{"frame_jacobians(", "frame_accelerations("}));
 }
 
+// --algorithms +NAME adds to the default set, where a plain list replaces it; the command says
+// which functions it wrote, and what a plain list left out of the default set.
+TEST_F(WritePackage, CommandAddsToTheDefaultAlgorithmsWithPlus) {
+  const auto run = [&](const std::string& algorithms) {
+    const auto r = run_dyngen({planar5, "-o", (dir / "gen").string(), "--algorithms", algorithms},
+                              dir);
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::vector<std::string> declared;
+    const std::string header = read(dir / "gen" / "planar5_dynamics.hpp");
+    for (const char* f : {"rnea", "crba", "aba", "minv", "rnea_derivatives"})
+      if (header.find(std::string("void ") + f + "(") != std::string::npos) declared.push_back(f);
+    return std::pair{declared, r.out};
+  };
+  using Names = std::vector<std::string>;
+  const auto [added, added_out] = run("+rnea_derivatives,+minv");
+  EXPECT_EQ(added, (Names{"rnea", "crba", "aba", "minv", "rnea_derivatives"}));
+  EXPECT_NE(added_out.find("functions: rnea, crba, aba, minv, rnea_derivatives\n"),
+            std::string::npos)
+      << added_out;
+  const auto [replaced, replaced_out] = run("rnea_derivatives");
+  EXPECT_EQ(replaced, Names{"rnea_derivatives"});
+  EXPECT_NE(replaced_out.find("functions: rnea_derivatives (not the default rnea, crba, aba: "
+                              "--algorithms +NAME adds to the default set)"),
+            std::string::npos)
+      << replaced_out;
+}
+
 TEST_F(WritePackage, CommandRefusesAProjectDirectoryBeforeItWorks) {
   const fs::path project = dir / "project";
   write(project / "CMakeLists.txt", "project(mine)\n");
