@@ -16,6 +16,7 @@ std::unique_ptr<Backend> make_c_backend(const GenerateOptions& options);
 std::unique_ptr<Backend> make_batch_backend(const GenerateOptions& options);
 std::unique_ptr<Backend> make_python_backend(const GenerateOptions& options);
 std::unique_ptr<Backend> make_torch_backend(const GenerateOptions& options);
+std::unique_ptr<Backend> make_eigen_backend(const GenerateOptions& options);
 
 std::string floating_point_lines(const std::string& file) {
   return fill("floating_point.in", {{"file", file}});
@@ -28,6 +29,8 @@ const std::vector<BackendEntry>& backend_registry() {
       {"batch", [](const GenerateOptions& o) { return o.batch > 0; }, make_batch_backend, ""},
       {"python", [](const GenerateOptions& o) { return o.python; }, make_python_backend, ""},
       {"torch", [](const GenerateOptions& o) { return o.torch; }, make_torch_backend, ""},
+      {"eigen", [](const GenerateOptions& o) { return o.language == "c++"; }, make_eigen_backend,
+       ""},
   };
   return registry;
 }
@@ -238,10 +241,18 @@ std::vector<std::string> free_joint_lines(const Model<double>& model) {
   return free_joints;
 }
 
+/// Whether an array holds a matrix (rows of several entries), row-major.
+bool is_matrix(const Extent& e) {
+  return e.size == Extent::NvNv || e.size == Extent::NcNv || e.per_body ||
+         (e.count > 1 && e.size != Extent::One);
+}
+
 /// The header's list of the arrays that the requested functions take, each once, and how q holds
-/// the free joints' positions (`free_joints`: lines to add to q's).
+/// the free joints' positions (`free_joints`: lines to add to q's); `eigen`, when not empty, the
+/// header of Eigen overloads, named after each matrix.
 std::string array_docs(const std::vector<Algorithm>& algorithms,
-                       const std::vector<std::string>& free_joints, const Dialect& dialect) {
+                       const std::vector<std::string>& free_joints, const Dialect& dialect,
+                       const std::string& eigen) {
   std::vector<std::pair<std::string, const ArraySpec*>> entries;
   std::size_t width = 0;
   for (const Algorithm& name : algorithms) {
@@ -257,7 +268,10 @@ std::string array_docs(const std::vector<Algorithm>& algorithms,
   }
   std::string text;
   for (const auto& [array, a] : entries) {
-    text += fmt::format("///   {:<{}}{}\n", array, width, a->meaning);
+    text += fmt::format("///   {:<{}}{}{}\n", array, width, a->meaning,
+                        eigen.empty() || !is_matrix(a->extent)
+                            ? ""
+                            : fmt::format(" (Eigen: {}, not a MatrixXd's data())", eigen));
     if (a->name == "q")
       for (const std::string& line : free_joints)
         text += fmt::format("///   {:<{}}{}\n", "", width, line);
@@ -340,7 +354,8 @@ std::map<std::string, std::string> header_values(const PackageContext& p, const 
        {"armature", armature_words(p.model)},
        {"nq", std::to_string(p.model.nq)},
        {"nv", std::to_string(p.model.nv)},
-       {"arrays", array_docs(p.options.algorithms, free_joint_lines(p.model), dialect)},
+       {"arrays", array_docs(p.options.algorithms, free_joint_lines(p.model), dialect,
+                             p.options.language == "c++" ? p.ns + "_eigen.hpp" : "")},
        {"frames", frames},
        {"declarations",
         declarations.empty() ? declarations : declarations.substr(0, declarations.size() - 1)}});

@@ -32,7 +32,7 @@
 ///   v[nv]       joint velocities
 ///   a[nv]       joint accelerations (input of rnea)
 ///   tau[nv]     joint forces: N m (revolute), N (prismatic)
-///   M[nv * nv]  joint-space mass matrix, row-major, both triangles: M[i * nv + j]
+///   M[nv * nv]  joint-space mass matrix, row-major, both triangles: M[i * nv + j] (Eigen: planar5_eigen.hpp, not a MatrixXd's data())
 ///   qdd[nv]     joint accelerations (output of aba)
 /// Gravity is built in: (0, -9.81, 0) m/s^2.
 namespace planar5 {

@@ -100,33 +100,33 @@
 ///   v[nv]                           joint velocities
 ///   a[nv]                           joint accelerations (input of rnea)
 ///   tau[nv]                         joint forces: N m (revolute), N (prismatic)
-///   M[nv * nv]                      joint-space mass matrix, row-major, both triangles: M[i * nv + j]
+///   M[nv * nv]                      joint-space mass matrix, row-major, both triangles: M[i * nv + j] (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
 ///   qdd[nv]                         joint accelerations (output of aba)
 ///   g[nv]                           generalised gravity: tau at v = 0, a = 0
 ///   h[nv]                           nonlinear effects (Coriolis, centrifugal, gravity): tau at a = 0
-///   Minv[nv * nv]                   inverse of the mass matrix, row-major, both triangles
-///   dtau_dq[nv * nv]                d tau / dq, row-major: dtau_dq[i * nv + j] = d tau_i / dq_j (free joints: tangent directions)
-///   dtau_dv[nv * nv]                d tau / dv, row-major: dtau_dv[i * nv + j] = d tau_i / dv_j
-///   dqdd_dq[nv * nv]                d qdd / dq, row-major: dqdd_dq[i * nv + j] = d qdd_i / dq_j (free joints: tangent directions)
-///   dqdd_dv[nv * nv]                d qdd / dv, row-major: dqdd_dv[i * nv + j] = d qdd_i / dv_j
+///   Minv[nv * nv]                   inverse of the mass matrix, row-major, both triangles (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
+///   dtau_dq[nv * nv]                d tau / dq, row-major: dtau_dq[i * nv + j] = d tau_i / dq_j (free joints: tangent directions) (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
+///   dtau_dv[nv * nv]                d tau / dv, row-major: dtau_dv[i * nv + j] = d tau_i / dv_j (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
+///   dqdd_dq[nv * nv]                d qdd / dq, row-major: dqdd_dq[i * nv + j] = d qdd_i / dq_j (free joints: tangent directions) (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
+///   dqdd_dv[nv * nv]                d qdd / dv, row-major: dqdd_dv[i * nv + j] = d qdd_i / dv_j (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
 ///   R[nframes * 9]                  each frame's rotation, row-major: R[9 f + 3 i + j]; its columns are the frame's axes in base coordinates
 ///   p[nframes * 3]                  each frame's origin in base coordinates: p[3 f + i]
-///   J[nframes * 6 * nv]             each frame's Jacobian in base axes at the frame's origin, 6 x nv row-major, linear rows first: J[(6 f + i) * nv + j]
-///   J_local[nframes * 6 * nv]       each frame's Jacobian in its own axes, 6 x nv row-major, linear rows first
+///   J[nframes * 6 * nv]             each frame's Jacobian in base axes at the frame's origin, 6 x nv row-major, linear rows first: J[(6 f + i) * nv + j] (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
+///   J_local[nframes * 6 * nv]       each frame's Jacobian in its own axes, 6 x nv row-major, linear rows first (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
 ///   Jdot_v[nframes * 6]             each frame's acceleration at qdd = 0 (of its origin, then angular), base axes: Jdot_v[6 f + i]; the frame accelerates by J qdd + Jdot_v
 ///   Jdot_v_local[nframes * 6]       each frame's acceleration at qdd = 0 in its own axes: J_local qdd + Jdot_v_local
 ///   c[3]                            centre of mass, base coordinates
-///   Jc[3 * nv]                      Jacobian of the centre of mass, 3 x nv row-major
-///   Ag[6 * nv]                      centroidal momentum matrix, 6 x nv row-major: linear momentum, then angular momentum about the centre of mass, base axes
+///   Jc[3 * nv]                      Jacobian of the centre of mass, 3 x nv row-major (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
+///   Ag[6 * nv]                      centroidal momentum matrix, 6 x nv row-major: linear momentum, then angular momentum about the centre of mass, base axes (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
 ///   hg[6]                           centroidal momentum Ag v (linear, then angular)
-///   Y[nbodies * 10 * nv]            inertial-parameter regressor, nv x 10 nbodies row-major: Y[k * 10 nbodies + 10 i + p], with tau = Y pi + armature a for pi the bodies' standard parameters (m, m c, Ixx, Ixy, Iyy, Ixz, Iyz, Izz about the body's origin) in body order
+///   Y[nbodies * 10 * nv]            inertial-parameter regressor, nv x 10 nbodies row-major: Y[k * 10 nbodies + 10 i + p], with tau = Y pi + armature a for pi the bodies' standard parameters (m, m c, Ixx, Ixy, Iyy, Ixz, Iyz, Izz about the body's origin) in body order (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
 ///   q_plus[nq]                      q moved by the tangent vector v for unit time (free joints: the pose times exp(v) in its body frame; ball joints: the rotation times exp(v))
 ///   q_target[nq]                    joint positions to reach from q
 ///   delta[nv]                       the tangent vector from q to q_target: integrate(q, delta) = q_target, rotations the shorter way round
-///   dintegrate_dq[nv * nv]          d q_plus / dq in tangent coordinates, row-major, block diagonal (Pinocchio's dIntegrate, ARG0)
-///   dintegrate_dv[nv * nv]          d q_plus / dv in tangent coordinates, row-major, block diagonal (Pinocchio's dIntegrate, ARG1)
-///   ddifference_dq[nv * nv]         d delta / dq in tangent coordinates, row-major, block diagonal (Pinocchio's dDifference, ARG0)
-///   ddifference_dq_target[nv * nv]  d delta / dq_target in tangent coordinates, row-major, block diagonal (Pinocchio's dDifference, ARG1)
+///   dintegrate_dq[nv * nv]          d q_plus / dq in tangent coordinates, row-major, block diagonal (Pinocchio's dIntegrate, ARG0) (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
+///   dintegrate_dv[nv * nv]          d q_plus / dv in tangent coordinates, row-major, block diagonal (Pinocchio's dIntegrate, ARG1) (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
+///   ddifference_dq[nv * nv]         d delta / dq in tangent coordinates, row-major, block diagonal (Pinocchio's dDifference, ARG0) (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
+///   ddifference_dq_target[nv * nv]  d delta / dq_target in tangent coordinates, row-major, block diagonal (Pinocchio's dDifference, ARG1) (Eigen: ur5_eigen.hpp, not a MatrixXd's data())
 /// Gravity is built in: (0, 0, -9.81) m/s^2.
 namespace ur5 {
 

@@ -422,7 +422,7 @@ TEST_F(WritePackage, CommandRegeneratesItsPackageKeepingTheUsersBuildFolder) {
   const fs::path gen = dir / "gen";
   ASSERT_EQ(run_dyngen({planar5, "-q", "-o", gen.string()}, dir).status, 0);
   const auto first = snapshot(gen);
-  EXPECT_EQ(first.size(), 6u);
+  EXPECT_EQ(first.size(), 7u);
   write(gen / "build" / "CMakeCache.txt", "cache\n");
   ASSERT_EQ(run_dyngen({planar5, "-q", "-o", gen.string(), "--algorithms", "rnea"}, dir).status,
             0);
