@@ -175,6 +175,73 @@ std::string LanguageBackend::check_case(const PackageContext& p, const TracedFun
                                         {"arguments", call_arguments(f.spec, *this).first}});
 }
 
+namespace {
+
+PinocchioMaps no_maps(const std::string& why) {
+  PinocchioMaps maps;
+  maps.missing = why;
+  return maps;
+}
+
+}  // namespace
+
+PinocchioMaps pinocchio_maps(const Robot& robot, const Model<double>& model) {
+  if (!robot.pinocchio_missing.empty()) return no_maps(robot.pinocchio_missing);
+  if (!robot.locked.empty()) return no_maps("joints are locked here, not in Pinocchio's model");
+  std::vector<int> bodies;  // in Pinocchio's order: the free joint of --floating-base first
+  for (int i = 0; i < model.nbodies; ++i)
+    if (model.parent[i] < 0 && model.joint_type[i] == JointType::Free) bodies.push_back(i);
+  for (const std::string& name : robot.pinocchio_order) {
+    const auto at = std::find(model.joint_name.begin(), model.joint_name.end(), name);
+    const int i = static_cast<int>(at - model.joint_name.begin());
+    if (at == model.joint_name.end() || (!model.mimic.empty() && model.mimic[i] >= 0))
+      return no_maps(fmt::format("joint '{}' has no coordinate of its own here (a mimic joint: "
+                                 "--mimic-independent gives it one, as Pinocchio's parser does)",
+                                 safe_text(name)));
+    bodies.push_back(i);
+  }
+  PinocchioMaps maps;
+  for (const int i : bodies) {
+    const int q = model.q_index[i], v = model.v_index[i];
+    if (model.joint_type[i] == JointType::Free)  // Pinocchio: x, y, z, qx, qy, qz, qw
+      maps.to_q.insert(maps.to_q.end(), {q, q + 1, q + 2, q + 4, q + 5, q + 6, q + 3});
+    else
+      for (int k = 0; k < joint_nq(model.joint_type[i]); ++k) maps.to_q.push_back(q + k);
+    for (int k = 0; k < joint_nv(model.joint_type[i]); ++k) maps.to_v.push_back(v + k);
+  }
+  if (static_cast<int>(maps.to_q.size()) != model.nq ||
+      static_cast<int>(maps.to_v.size()) != model.nv)
+    return no_maps("some joints are not in Pinocchio's model");
+  maps.from_q.resize(maps.to_q.size());
+  maps.from_v.resize(maps.to_v.size());
+  for (std::size_t k = 0; k < maps.to_q.size(); ++k)
+    maps.from_q[maps.to_q[k]] = static_cast<int>(k);
+  for (std::size_t k = 0; k < maps.to_v.size(); ++k)
+    maps.from_v[maps.to_v[k]] = static_cast<int>(k);
+  return maps;
+}
+
+std::string pinocchio_declarations(const Robot& robot, const Model<double>& model) {
+  const PinocchioMaps maps = pinocchio_maps(robot, model);
+  const std::string head =
+      "\n/// Pinocchio's coordinates for the same URDF (pinocchio::urdf::buildModel, with\n"
+      "/// JointModelFreeFlyer under --floating-base; README, \"Coordinates beside Pinocchio's\"):";
+  if (!maps.missing.empty())
+    return head + "\n" + comment_lines("No index maps: " + maps.missing + ".");
+  const auto list = [](const std::vector<int>& v) {
+    return fmt::format("{{{}}}", fmt::join(v, ", "));
+  };
+  return fmt::format(
+      "{}\n/// joints depth first from the root link, siblings by name; the free joint's quaternion\n"
+      "/// w last. q_pinocchio[i] = q[to_pinocchio_q[i]], q[i] = q_pinocchio[from_pinocchio_q[i]];\n"
+      "/// v, a, tau, qdd and the derivatives' rows and columns by the _v maps.\n"
+      "inline constexpr int to_pinocchio_q[nq] = {};\n"
+      "inline constexpr int from_pinocchio_q[nq] = {};\n"
+      "inline constexpr int to_pinocchio_v[nv] = {};\n"
+      "inline constexpr int from_pinocchio_v[nv] = {};\n",
+      head, list(maps.to_q), list(maps.from_q), list(maps.to_v), list(maps.from_v));
+}
+
 std::string joint_name_lines(const Model<double>& model) {
   std::string joint_names;
   const std::vector<std::string> names = velocity_names(model);

@@ -180,6 +180,22 @@ std::string body_name_lines(const Model<double>& model);
 /// "    \"shoulder_pan_joint\",\n..." : the velocity names as initialiser lines.
 std::string joint_name_lines(const Model<double>& model);
 
+/// The index maps between the package's q and v and Pinocchio's for the same URDF (README,
+/// "Coordinates beside Pinocchio's"): q_pinocchio[i] = q[to_q[i]] and q[i] =
+/// q_pinocchio[from_q[i]], the same for v; or, when Pinocchio's coordinates are not a
+/// reordering of these, no maps and the reason, in words.
+struct PinocchioMaps {
+  std::vector<int> to_q, from_q, to_v, from_v;
+  std::string missing;
+};
+PinocchioMaps pinocchio_maps(const Robot& robot, const Model<double>& model);
+
+/// text as /// comment lines of at most 100 columns, broken at spaces.
+std::string comment_lines(const std::string& text);
+
+/// The header's maps (pinocchio_maps) as C++ declarations, or a comment that says why not.
+std::string pinocchio_declarations(const Robot& robot, const Model<double>& model);
+
 /// The frames' names as initialiser lines, "    \"tool0\",\n" each.
 std::string frame_name_lines(const Model<double>& model);
 

@@ -19,7 +19,9 @@ class CppBackend final : public LanguageBackend {
         p, *this, summary,
         frame_declarations(p.model) + body_declarations(p) + constraint_declarations(p.model),
         declarations_);
-    header.insert({{"namespace", p.ns}, {"joint_names", joint_name_lines(p.model)}});
+    header.insert({{"namespace", p.ns},
+                   {"joint_names", joint_name_lines(p.model)},
+                   {"pinocchio", pinocchio_declarations(p.robot, p.model)}});
     files.push_back({this->header(), fill("dynamics.hpp.in", header)});
     files.push_back({source(), fill("dynamics.cpp.in",
                                     {{"banner", summary.code_banner},

@@ -87,6 +87,25 @@ std::string python_names(const std::vector<std::string>& names) {
 }
 
 /// The Python module's constants beyond nq, nv, lanes and dtype.
+/// The module's to_pinocchio_q, from_pinocchio_q, to_pinocchio_v and from_pinocchio_v (tuples of
+/// indices, pinocchio_maps), or None each, with the reason in a comment.
+std::string python_pinocchio(const Robot& robot, const Model<double>& model) {
+  const PinocchioMaps maps = pinocchio_maps(robot, model);
+  const char* names[] = {"to_pinocchio_q", "from_pinocchio_q", "to_pinocchio_v",
+                         "from_pinocchio_v"};
+  const std::vector<int>* lists[] = {&maps.to_q, &maps.from_q, &maps.to_v, &maps.from_v};
+  std::string text =
+      "    // Pinocchio's coordinates (README, \"Coordinates beside Pinocchio's\"): "
+      "q_pinocchio = q[..., to_pinocchio_q]\n";
+  if (!maps.missing.empty()) text += "    // none: " + maps.missing + "\n";
+  for (int k = 0; k < 4; ++k)
+    text += fmt::format("    m.attr(\"{}\") = {};\n", names[k],
+                        maps.missing.empty()
+                            ? fmt::format("py::make_tuple({})", fmt::join(*lists[k], ", "))
+                            : std::string("py::none()"));
+  return text;
+}
+
 std::string python_attributes(const Model<double>& model) {
   const Vec3<double>& g = model.gravity;
   double mass = 0;
@@ -154,7 +173,8 @@ class PythonBackend final : public Backend {
                                             {"scalar", p.scalar},
                                             {"dtype", p.single ? "float32" : "float64"},
                                             {"lanes", std::to_string(p.options.batch)},
-                                            {"attributes", python_attributes(p.model)},
+                                            {"attributes", python_attributes(p.model) +
+                                                               python_pinocchio(p.robot, p.model)},
                                             {"functions", functions_}})});
     // pip install: the module built by the package's CMakeLists.txt
     files.push_back({"pyproject.toml", fill("pyproject.toml.in", {{"banner", summary.hash_banner},

@@ -10,6 +10,7 @@
 #include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "names.hpp"
 #include "readers.hpp"
 
 namespace dyngen::gen {
@@ -99,6 +100,41 @@ void check_no_loop(const std::string& path, const tinyxml2::XMLElement* robot) {
         "{}: joints {} form a loop (link '{}' is its own ancestor); a URDF must be a tree", path,
         joints, start));
   }
+}
+
+}  // namespace
+
+namespace {
+
+/// The moving joints as Pinocchio's URDF parser numbers them (pinocchio::urdf::buildModel):
+/// depth first from the root link, each link's child joints in urdfdom's order, which is the
+/// order of their names (it keeps joints in a std::map); or the reason it gives other
+/// coordinates than dyngen's (a continuous joint is cos and sin there).
+void pinocchio_order(const urdf::ModelInterface& urdf, RobotDescription& robot) {
+  for (const auto& [name, joint] : urdf.joints_)
+    if (joint->type == urdf::Joint::CONTINUOUS || joint->type == urdf::Joint::PLANAR ||
+        joint->type == urdf::Joint::FLOATING) {
+      robot.pinocchio_missing =
+          fmt::format("joint '{}' is {}", safe_text(name),
+                      joint->type == urdf::Joint::CONTINUOUS
+                          ? "continuous, which is cos and sin there"
+                          : "planar or floating, with other coordinates there");
+      return;
+    }
+  // a stack of joints to visit, the next on top: each link's children pushed in reverse; a
+  // link once (the builder, later, refuses what is not a tree)
+  std::vector<urdf::JointSharedPtr> joints(urdf.getRoot()->child_joints.rbegin(),
+                                           urdf.getRoot()->child_joints.rend());
+  std::set<std::string> visited{urdf.getRoot()->name};
+  while (!joints.empty()) {
+    const urdf::JointSharedPtr joint = joints.back();
+    joints.pop_back();
+    const urdf::LinkConstSharedPtr child = urdf.getLink(joint->child_link_name);
+    if (!child || !visited.insert(child->name).second) continue;
+    if (joint->type != urdf::Joint::FIXED) robot.pinocchio_order.push_back(joint->name);
+    joints.insert(joints.end(), child->child_joints.rbegin(), child->child_joints.rend());
+  }
+  robot.pinocchio_missing.clear();
 }
 
 }  // namespace
@@ -198,6 +234,7 @@ RobotDescription parse_urdf(const std::string& path, const std::string& xml) {
                               joint->mimic->offset});
     robot.builder.add_joint(spec);
   }
+  pinocchio_order(*urdf, robot);
   return robot;
 }
 

@@ -439,6 +439,8 @@ Robot parse_robot(const std::string& path, const std::string& text, const LoadOp
   robot.name = description.name;
   robot.sha256 = sha256_of(text);
   robot.warnings = description.warnings;
+  robot.pinocchio_order = description.pinocchio_order;
+  robot.pinocchio_missing = description.pinocchio_missing;
   for (const LinkSpec& link : description.builder.links())
     check_inertia(path, link, robot.warnings);
 

@@ -47,6 +47,10 @@ struct RobotDescription {
     bool six_d = false;
   };
   std::vector<Loop> loops;
+  /// The moving joints in the order Pinocchio's URDF parser gives them coordinates, or empty
+  /// with the reason in pinocchio_missing (README, "Coordinates beside Pinocchio's").
+  std::vector<std::string> pinocchio_order;
+  std::string pinocchio_missing = "the input is not a URDF";
 };
 
 /// A file's bytes; InputError naming the path and the system's reason when it cannot be read.
@@ -80,6 +84,8 @@ struct Robot {
   std::vector<std::string> locked;  // joints locked, in the order given
   std::vector<std::string> warnings;
   std::optional<SnapReport> snapped;  // with LoadOptions::snap
+  std::vector<std::string> pinocchio_order;  // RobotDescription's
+  std::string pinocchio_missing;
 };
 
 inline constexpr Vec3<double> default_gravity{0, 0, -9.81};

@@ -49,6 +49,10 @@ inline constexpr const char* joint_names[nv] = {
     "link5_joint",
 };
 
+/// Pinocchio's coordinates for the same URDF (pinocchio::urdf::buildModel, with
+/// JointModelFreeFlyer under --floating-base; README, "Coordinates beside Pinocchio's"):
+/// No index maps: the input is not a URDF.
+
 /// Sines and cosines of the revolute joints' angles, trig.sin_q[k] = sin(q[k]); entries of
 /// other joints are never read. Each function below comes twice: f(q, ...) and
 /// f_trig(q, trig, ...), so that one joint_trig(q, trig) serves several calls at the same q.

@@ -143,6 +143,16 @@ inline constexpr const char* joint_names[nv] = {
     "wrist_3_joint",
 };
 
+/// Pinocchio's coordinates for the same URDF (pinocchio::urdf::buildModel, with
+/// JointModelFreeFlyer under --floating-base; README, "Coordinates beside Pinocchio's"):
+/// joints depth first from the root link, siblings by name; the free joint's quaternion
+/// w last. q_pinocchio[i] = q[to_pinocchio_q[i]], q[i] = q_pinocchio[from_pinocchio_q[i]];
+/// v, a, tau, qdd and the derivatives' rows and columns by the _v maps.
+inline constexpr int to_pinocchio_q[nq] = {0, 1, 2, 3, 4, 5};
+inline constexpr int from_pinocchio_q[nq] = {0, 1, 2, 3, 4, 5};
+inline constexpr int to_pinocchio_v[nv] = {0, 1, 2, 3, 4, 5};
+inline constexpr int from_pinocchio_v[nv] = {0, 1, 2, 3, 4, 5};
+
 /// The frames whose placements, Jacobians or accelerations the functions compute, in order
 /// (--frames).
 inline constexpr int nframes = 2;

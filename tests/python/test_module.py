@@ -317,3 +317,20 @@ def test_module_constants():
     assert d.total_mass > 0
     assert len(d.gravity_acceleration) == 3
     assert d.lanes in (2, 4, 8, 16)
+
+
+def test_pinocchio_maps_are_inverse_reorderings():
+    """to_pinocchio_q/v reorder q and v, from_ undoes them; a root free joint's quaternion moves
+    its w last (the order against Pinocchio's parser is kdl_peer_test's)."""
+    if d.to_pinocchio_q is None:
+        assert d.from_pinocchio_v is None
+        return
+    for to, from_, n in ((d.to_pinocchio_q, d.from_pinocchio_q, d.nq),
+                         (d.to_pinocchio_v, d.from_pinocchio_v, d.nv)):
+        assert sorted(to) == list(range(n))
+        assert [from_[i] for i in to] == list(range(n))
+    q = states(1)[0][0]
+    q_pinocchio = q[list(d.to_pinocchio_q)]
+    assert np.array_equal(q_pinocchio[list(d.from_pinocchio_q)], q)
+    if d.quaternion_indices and d.quaternion_indices[0] == 3:  # a floating base's free joint
+        assert np.array_equal(q_pinocchio[3:7], q[[4, 5, 6, 3]])

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "backend.hpp"
 #include "dyngen/dyngen.hpp"
 #include "robot.hpp"
 #include "test_support.hpp"
@@ -172,6 +173,45 @@ TEST_P(KdlPeer, JointsAsInUrdf) {
     EXPECT_EQ(joint.getStiffness(), 0) << joint.getName();
   }
   EXPECT_EQ(kdl_joints, std::set<std::string>(model.joint_name.begin(), model.joint_name.end()));
+}
+
+// The header's maps to Pinocchio's coordinates (pinocchio_maps) against kdl_parser's numbering:
+// both it and Pinocchio's URDF parser number the joints depth first from the root link over
+// urdfdom's children, so KDL's q_nr order is Pinocchio's. Fixed base: the maps are then a
+// reordering of the joints; with a floating base the free joint comes first, its quaternion w
+// last (Pinocchio's documented JointModelFreeFlyer), and the rest follows, shifted.
+TEST_P(KdlPeer, PinocchioMapsFollowTheParsersOrder) {
+  const RobotFile& file = GetParam();
+  const gen::Robot robot = gen::load_robot(file.path, file.options);
+  const gen::PinocchioMaps maps = gen::pinocchio_maps(robot, robot.model);
+  if (!maps.missing.empty()) {  // pr2's continuous joints are cos and sin in Pinocchio
+    EXPECT_NE(maps.missing.find("continuous"), std::string::npos) << maps.missing;
+    return;
+  }
+  const Model<double>& model = robot.model;
+  std::vector<std::string> velocity(model.nv);
+  for (int i = 0; i < model.nbodies; ++i) velocity[model.v_index[i]] = model.joint_name[i];
+  const auto dynamics = tree_dynamics(load_tree(file.path, {}, false), model.gravity);
+  const std::vector<std::string>& kdl = dynamics->joint_names();
+  ASSERT_EQ(maps.to_v.size(), kdl.size());
+  for (std::size_t k = 0; k < kdl.size(); ++k) {
+    EXPECT_EQ(velocity[maps.to_v[k]], kdl[k]) << "Pinocchio's v[" << k << "]";
+    EXPECT_EQ(maps.from_v[maps.to_v[k]], static_cast<int>(k));
+  }
+  EXPECT_EQ(maps.to_q, maps.to_v);  // one coordinate a joint, as KDL's
+
+  gen::LoadOptions floating = file.options;
+  floating.floating_base = true;
+  const gen::Robot free = gen::load_robot(file.path, floating);
+  const gen::PinocchioMaps free_maps = gen::pinocchio_maps(free, free.model);
+  ASSERT_TRUE(free_maps.missing.empty()) << free_maps.missing;
+  const std::vector<int> head{0, 1, 2, 4, 5, 6, 3};  // x, y, z, then qx, qy, qz after w
+  ASSERT_EQ(free_maps.to_q.size(), maps.to_q.size() + 7);
+  EXPECT_TRUE(std::equal(head.begin(), head.end(), free_maps.to_q.begin()));
+  for (std::size_t k = 0; k < maps.to_q.size(); ++k) {
+    EXPECT_EQ(free_maps.to_q[k + 7], maps.to_q[k] + 7);
+    EXPECT_EQ(free_maps.to_v[k + 6], maps.to_v[k] + 6);
+  }
 }
 
 TEST_P(KdlPeer, FixedBase) { compare(false); }
