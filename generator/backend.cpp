@@ -232,8 +232,9 @@ std::string pinocchio_declarations(const Robot& robot, const Model<double>& mode
     return fmt::format("{{{}}}", fmt::join(v, ", "));
   };
   return fmt::format(
-      "{}\n/// joints depth first from the root link, siblings by name; the free joint's quaternion\n"
-      "/// w last. q_pinocchio[i] = q[to_pinocchio_q[i]], q[i] = q_pinocchio[from_pinocchio_q[i]];\n"
+      "{}\n/// joints depth first from the root link, siblings by name; the free joint's "
+      "quaternion\n/// w last. q_pinocchio[i] = q[to_pinocchio_q[i]], q[i] = "
+      "q_pinocchio[from_pinocchio_q[i]];\n"
       "/// v, a, tau, qdd and the derivatives' rows and columns by the _v maps.\n"
       "inline constexpr int to_pinocchio_q[nq] = {};\n"
       "inline constexpr int from_pinocchio_q[nq] = {};\n"
