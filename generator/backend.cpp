@@ -83,13 +83,17 @@ std::string extent_in(const Extent& e, const Dialect& dialect) {
 
 std::string declaration(const std::string& name, const std::vector<std::string>& parameters,
                         const Dialect& dialect) {
-  const std::string head = fmt::format("void {}(", name);
+  return wrapped_parameters(fmt::format("void {}(", name), parameters,
+                            std::string(")") + dialect.no_throw());
+}
+
+std::string wrapped_parameters(const std::string& head, const std::vector<std::string>& parameters,
+                               const std::string& end) {
   const std::size_t indent = head.size();
   std::string text = head;
   std::size_t column = indent;
   for (std::size_t k = 0; k < parameters.size(); ++k) {
-    const std::string item =
-        k + 1 < parameters.size() ? parameters[k] + ", " : parameters[k] + ")" + dialect.no_throw();
+    const std::string item = k + 1 < parameters.size() ? parameters[k] + ", " : parameters[k] + end;
     if (column + item.size() > 100 && column > indent) {
       while (text.back() == ' ') text.pop_back();
       text += fmt::format("\n{:{}}", "", indent);

@@ -131,6 +131,11 @@ std::string upper(std::string s);
 /// "nq", "UR5_NQ * 3": an array's extent as the dialect spells sizes.
 std::string extent_in(const Extent& e, const Dialect& dialect);
 
+/// head ("void name("), the parameters separated by commas, then end (") noexcept"), wrapped at
+/// 100 columns with continuation lines under the first parameter.
+std::string wrapped_parameters(const std::string& head, const std::vector<std::string>& parameters,
+                               const std::string& end);
+
 /// "void name(a, b, ...) noexcept" (C: no noexcept) wrapped at 100 columns, continuation lines
 /// under the first parameter.
 std::string declaration(const std::string& name, const std::vector<std::string>& parameters,

@@ -57,18 +57,8 @@ std::string eigen_function(const AlgorithmSpec<double>& spec) {
     arguments.push_back(a.extent.per_frame ? fmt::format("{}[0].data()", a.name)
                                            : fmt::format("{}.data()", a.name));
   }
-  std::string head = fmt::format("inline void {}(", spec.name), text = head;
-  std::size_t column = head.size();
-  for (std::size_t k = 0; k < parameters.size(); ++k) {
-    const std::string item = parameters[k] + (k + 1 < parameters.size() ? ", " : ") noexcept {");
-    if (column + item.size() > 100 && column > head.size()) {
-      text.pop_back();
-      text += fmt::format("\n{:{}}", "", head.size());
-      column = head.size();
-    }
-    text += item;
-    column += item.size();
-  }
+  const std::string text =
+      wrapped_parameters(fmt::format("inline void {}(", spec.name), parameters, ") noexcept {");
   std::string call;
   for (const std::string& a : arguments) call += (call.empty() ? "" : ", ") + a;
   return fmt::format("\n/// {}\n{}\n    {}({});\n}}\n", spec.summary, text, spec.name, call);
